@@ -1,0 +1,62 @@
+// Warps from the unit square to common domains, with their densities (pbrt-v4, ch. A.5).
+#pragma once
+
+#include "core/math.hpp"
+
+namespace nimbus {
+
+// Concentric (Shirley-Chiu) mapping of [0,1)^2 onto the unit disk.
+inline Vec2f sample_uniform_disk_concentric(float u0, float u1) {
+  const float ox = 2.0f * u0 - 1.0f, oy = 2.0f * u1 - 1.0f;
+  if (ox == 0 && oy == 0) return {0, 0};
+  float r, theta;
+  if (std::abs(ox) > std::abs(oy)) {
+    r = ox, theta = (kPi / 4) * (oy / ox);
+  } else {
+    r = oy, theta = kPi / 2 - (kPi / 4) * (ox / oy);
+  }
+  return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+inline Vec3f sample_cosine_hemisphere(float u0, float u1) {
+  const Vec2f d = sample_uniform_disk_concentric(u0, u1);
+  return {d.x, d.y, safe_sqrt(1.0f - d.x * d.x - d.y * d.y)};
+}
+inline float cosine_hemisphere_pdf(float cos_theta) { return std::max(cos_theta, 0.0f) * kInvPi; }
+
+inline Vec3f sample_uniform_sphere(float u0, float u1) {
+  const float z = 1.0f - 2.0f * u0;
+  const float r = safe_sqrt(1.0f - z * z);
+  const float phi = 2.0f * kPi * u1;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
+
+// Uniform direction in the cone around +z with the given cos of its half angle.
+inline Vec3f sample_uniform_cone(float u0, float u1, float cos_theta_max) {
+  const float cos_theta = (1.0f - u0) + u0 * cos_theta_max;
+  const float sin_theta = safe_sqrt(1.0f - cos_theta * cos_theta);
+  const float phi = u1 * 2.0f * kPi;
+  return {std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, cos_theta};
+}
+inline float uniform_cone_pdf(float cos_theta_max) { return 1.0f / (2.0f * kPi * (1.0f - cos_theta_max)); }
+
+// Barycentrics (b1, b2) uniform over a triangle (Heitz 2019's low-distortion map, as pbrt-v4).
+inline Vec2f sample_uniform_triangle(float u0, float u1) {
+  float b0, b1;
+  if (u0 < u1) {
+    b0 = u0 / 2, b1 = u1 - b0;
+  } else {
+    b1 = u1 / 2, b0 = u0 - b1;
+  }
+  return {b0, b1};
+}
+
+// Veach's power heuristic with beta = 2 for two techniques with one sample each.
+inline float power_heuristic(float pdf_a, float pdf_b) {
+  const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
+  if (std::isinf(a)) return 1.0f;
+  return a + b > 0 ? a / (a + b) : 0.0f;
+}
+
+}  // namespace nimbus

@@ -1,0 +1,105 @@
+// The parsed scene: plain data, validated, in world space, with no renderer state. The parser
+// (scene_parser.hpp) produces it from YAML; the scene builder (render/scene_builder) turns it into Embree
+// geometry, materials and lights.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/math.hpp"
+#include "core/transform.hpp"
+
+namespace nimbus {
+
+// Where a value came from, for errors found after parsing (e.g. while loading a mesh).
+struct SourceLocation {
+  std::string file;
+  int line = 0;    // 1-based; 0 = unknown
+  int column = 0;  // 1-based
+};
+
+struct RenderDesc {
+  uint32_t width = 512, height = 512;
+  uint64_t iterations = 0;     // 0 = not set (then time or the CLI decides; default 64)
+  double time_seconds = 0;     // 0 = no time budget
+  uint64_t seed = 1;
+  uint32_t max_depth = 16;     // path length in segments: a camera ray that hits a light is 1
+  std::string integrator = "pt";  // short name (pt, lt, caustics) or full plugin id
+  // Options for the integrator (e.g. caustics: on). Values are kept as written.
+  std::map<std::string, std::string> options;
+  std::vector<std::string> elements;  // requested render elements besides beauty
+};
+
+struct CameraDesc {
+  Vec3f position{0, -4, 1};
+  Vec3f look_at{0, 0, 0};
+  Vec3f up{0, 0, 1};
+  float fov_degrees = 45;  // horizontal field of view
+  float aperture = 0;      // thin-lens radius; 0 = pinhole
+  float focus_distance = 0;  // 0 = distance to look_at
+};
+
+enum class MaterialType { Diffuse, Conductor, Dielectric };
+
+struct MaterialDesc {
+  std::string name;
+  MaterialType type = MaterialType::Diffuse;
+  Rgb albedo{0.8f, 0.8f, 0.8f};  // diffuse
+  // Conductor: complex IOR per RGB channel (from `metal:` or `eta:`/`k:`), or an ideal mirror with
+  // `reflectance:` (use_reflectance = true: no Fresnel, reflects `reflectance`).
+  Rgb eta{0.2f, 0.92f, 1.1f};
+  Rgb k{3.9f, 2.45f, 2.14f};
+  bool use_reflectance = false;
+  Rgb reflectance{1, 1, 1};
+  float ior = 1.5f;        // dielectric
+  float roughness = 0;     // conductor and dielectric: user-facing roughness in [0, 1]; GGX alpha = r^2
+  SourceLocation where;
+};
+
+enum class ShapeType { Sphere, Rectangle, Box, Disk, Mesh };
+
+struct MeshData {
+  std::vector<Vec3f> positions;        // world space
+  std::vector<Vec3f> normals;          // per vertex, world space; empty = flat shading
+  std::vector<Vec2f> uvs;              // per vertex; may be empty
+  std::vector<uint32_t> indices;       // 3 per triangle
+};
+
+struct ShapeDesc {
+  ShapeType type = ShapeType::Sphere;
+  // Sphere and disk, world space after the transform (which must be a similarity for them).
+  Vec3f center{0, 0, 0};
+  float radius = 1;
+  Vec3f normal{0, 0, 1};  // disk
+  // Rectangle, box and mesh: triangles already in world space (rectangle: 2, box: 12).
+  MeshData mesh;
+  uint32_t material = 0;  // index into SceneDesc::materials
+  // Area emission: radiance in W/(m^2 sr) per channel; black = not an emitter.
+  Rgb emission{0, 0, 0};
+  bool two_sided = false;  // emission leaves both sides
+  std::string group;       // LightMix group; empty = its own group
+  SourceLocation where;
+};
+
+enum class LightType { Point };
+
+struct LightDesc {
+  LightType type = LightType::Point;
+  Vec3f position{0, 0, 0};
+  Rgb intensity{1, 1, 1};  // W/sr
+  std::string group;
+  SourceLocation where;
+};
+
+struct SceneDesc {
+  std::string path;  // the scene file
+  RenderDesc render;
+  CameraDesc camera;
+  std::vector<MaterialDesc> materials;
+  std::vector<ShapeDesc> shapes;
+  std::vector<LightDesc> lights;
+};
+
+}  // namespace nimbus

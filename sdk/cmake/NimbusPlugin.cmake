@@ -1,0 +1,31 @@
+# nimbus_add_plugin(<target> SOURCES <files...> [OUTPUT_DIRECTORY <dir>] [NO_INSTALL])
+#
+# Builds a Nimbus plugin as a MODULE library that exports only `nimbus_plugin_entry`: hidden visibility,
+# a version script, and --no-undefined so that a missing symbol fails at link time, not at load time.
+# Plugins never link host libraries; only C crosses the boundary.
+set(_NIMBUS_PLUGIN_MAP ${CMAKE_CURRENT_LIST_DIR}/nimbus_plugin.map)
+
+function(nimbus_add_plugin target)
+  cmake_parse_arguments(ARG "NO_INSTALL" "OUTPUT_DIRECTORY" "SOURCES" ${ARGN})
+  add_library(${target} MODULE ${ARG_SOURCES})
+  target_link_libraries(${target} PRIVATE Nimbus::sdk)
+  set_target_properties(${target} PROPERTIES
+    PREFIX "lib"
+    C_VISIBILITY_PRESET hidden
+    CXX_VISIBILITY_PRESET hidden
+    VISIBILITY_INLINES_HIDDEN ON)
+  target_link_options(${target} PRIVATE
+    "LINKER:--version-script=${_NIMBUS_PLUGIN_MAP}" "LINKER:--no-undefined")
+  # Sanitizer runtimes are provided by the host executable; allow their symbols to stay undefined.
+  if(NIMBUS_SANITIZE)
+    target_link_options(${target} PRIVATE "LINKER:--allow-shlib-undefined")
+  endif()
+  if(ARG_OUTPUT_DIRECTORY)
+    set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${ARG_OUTPUT_DIRECTORY})
+  elseif(DEFINED NIMBUS_PLUGIN_OUTPUT_DIR)
+    set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${NIMBUS_PLUGIN_OUTPUT_DIR})
+  endif()
+  if(NOT ARG_NO_INSTALL AND DEFINED NIMBUS_INSTALL_PLUGIN_DIR)
+    install(TARGETS ${target} LIBRARY DESTINATION ${NIMBUS_INSTALL_PLUGIN_DIR})
+  endif()
+endfunction()
