@@ -1,0 +1,32 @@
+// Complex indices of refraction of common metals, as RGB triples sampled at roughly 650, 550 and 450 nm
+// (values from refractiveindex.info measurements, as used by pbrt-v4 and Mitsuba 3 RGB modes).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include "core/math.hpp"
+
+namespace nimbus {
+
+struct MetalIor {
+  std::string_view name;
+  Rgb eta, k;
+};
+
+inline constexpr std::array<MetalIor, 5> kMetals{{
+    {"gold", {0.143f, 0.374f, 1.442f}, {3.983f, 2.385f, 1.603f}},
+    {"silver", {0.155f, 0.117f, 0.138f}, {4.828f, 3.122f, 2.147f}},
+    {"copper", {0.200f, 0.924f, 1.102f}, {3.912f, 2.452f, 2.142f}},
+    {"aluminium", {1.657f, 0.880f, 0.521f}, {9.224f, 6.270f, 4.837f}},
+    {"aluminum", {1.657f, 0.880f, 0.521f}, {9.224f, 6.270f, 4.837f}},
+}};
+
+inline std::optional<MetalIor> find_metal(std::string_view name) {
+  for (const MetalIor &m : kMetals)
+    if (m.name == name) return m;
+  return std::nullopt;
+}
+
+}  // namespace nimbus
