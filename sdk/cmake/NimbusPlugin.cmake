@@ -3,10 +3,11 @@
 # Builds a Nimbus plugin as a MODULE library that exports only `nimbus_plugin_entry`: hidden visibility,
 # a version script, and --no-undefined so that a missing symbol fails at link time, not at load time.
 # Plugins never link host libraries; only C crosses the boundary.
-set(_NIMBUS_PLUGIN_MAP ${CMAKE_CURRENT_LIST_DIR}/nimbus_plugin.map)
 
 function(nimbus_add_plugin target)
   cmake_parse_arguments(ARG "NO_INSTALL" "OUTPUT_DIRECTORY" "SOURCES" ${ARGN})
+  # The version script sits next to this file, wherever the SDK is (source tree or install prefix).
+  set(_NIMBUS_PLUGIN_MAP ${CMAKE_CURRENT_FUNCTION_LIST_DIR}/nimbus_plugin.map)
   add_library(${target} MODULE ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE Nimbus::sdk)
   set_target_properties(${target} PROPERTIES
