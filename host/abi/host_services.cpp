@@ -1,0 +1,53 @@
+#include "abi/host_services.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <string_view>
+
+#include "abi/service_tables.hpp"
+
+namespace nimbus {
+namespace {
+
+const void *get_service(const nimbus_host_t *, const char *id, uint32_t rev) {
+  return HostServices::find_service(id, rev);
+}
+
+void log_message(const nimbus_host_t *host, nimbus_log_level_t level, const char *plugin_id, const char *msg) {
+  RenderContext *ctx = static_cast<HostServices *>(host->host_data)->context();
+  const std::string id = plugin_id ? plugin_id : "";
+  const std::string text = msg ? msg : "";
+  if (ctx && ctx->log) {
+    ctx->log(level, id, text);
+  } else if (level >= NIMBUS_LOG_WARNING) {
+    std::fprintf(stderr, "nimbus: %s%s%s\n", id.c_str(), id.empty() ? "" : ": ", text.c_str());
+  }
+}
+
+}  // namespace
+
+HostServices::HostServices(RenderContext *ctx) : ctx_(ctx) {
+  host_.struct_size = sizeof(nimbus_host_t);
+  host_.abi = NIMBUS_ABI_VERSION_INIT;
+  host_.host_data = this;
+  host_.get_service = get_service;
+  host_.log = log_message;
+}
+
+const void *HostServices::find_service(const char *id, uint32_t rev) {
+  if (!id || rev != 1) return nullptr;  // every 1.0 service is at revision 1
+  const std::string_view s(id);
+  if (s == NIMBUS_SERVICE_SCENE_QUERY) return &kSceneQueryV1;
+  if (s == NIMBUS_SERVICE_CAMERA) return &kCameraV1;
+  if (s == NIMBUS_SERVICE_BSDF) return &kBsdfV1;
+  if (s == NIMBUS_SERVICE_LIGHTS) return &kLightsV1;
+  if (s == NIMBUS_SERVICE_FILM) return &kFilmV1;
+  if (s == NIMBUS_SERVICE_RNG) return &kRngV1;
+  if (s == NIMBUS_SERVICE_PROGRESS) return &kProgressV1;
+  if (s == NIMBUS_SERVICE_TASKS) return &kTasksV1;
+  if (s == NIMBUS_SERVICE_MEMORY) return &kMemoryV1;
+  if (s == NIMBUS_SERVICE_THREAD_CHECK) return &kThreadCheckV1;
+  return nullptr;
+}
+
+}  // namespace nimbus

@@ -1,0 +1,77 @@
+// nimbus.host.scene-query@1 and nimbus.host.camera@1.
+#include "abi/host_services.hpp"
+#include "abi/service_tables.hpp"
+
+namespace nimbus {
+namespace {
+
+void intersect(const nimbus_host_t *host, const nimbus_thread_ctx_t *, const nimbus_ray_t *rays,
+               nimbus_hit_t *hits, uint32_t n) {
+  const GeometryScene &g = *context_of(host).geometry;
+  for (uint32_t i = 0; i < n; ++i) g.intersect(rays[i], hits[i]);
+}
+
+void occluded(const nimbus_host_t *host, const nimbus_thread_ctx_t *, const nimbus_ray_t *rays, uint8_t *blocked,
+              uint32_t n) {
+  const GeometryScene &g = *context_of(host).geometry;
+  for (uint32_t i = 0; i < n; ++i) blocked[i] = g.occluded(rays[i]) ? 1 : 0;
+}
+
+void interaction(const nimbus_host_t *host, const nimbus_ray_t *ray, const nimbus_hit_t *hit,
+                 nimbus_interaction_t *out) {
+  context_of(host).geometry->interaction(*ray, *hit, *out);
+}
+
+void spawn_ray(const nimbus_host_t *, const nimbus_interaction_t *ix, const float dir[3], float tfar,
+               nimbus_ray_t *out) {
+  const Vec3f d = Vec3f::load(dir);
+  offset_origin(Vec3f::load(ix->p), Vec3f::load(ix->ng), ix->eps, d).store(out->org);
+  d.store(out->dir);
+  out->tnear = 0;
+  out->tfar = tfar;
+  out->mask = 0xFFFFFFFFu;
+  out->flags = 0;
+}
+
+void spawn_ray_to(const nimbus_host_t *, const nimbus_interaction_t *ix, const float p[3], nimbus_ray_t *out) {
+  const Vec3f target = Vec3f::load(p);
+  const Vec3f to = target - Vec3f::load(ix->p);
+  const Vec3f org = offset_origin(Vec3f::load(ix->p), Vec3f::load(ix->ng), ix->eps, to);
+  const Vec3f d = target - org;
+  const float dist = length(d);
+  (d / dist).store(out->dir);
+  org.store(out->org);
+  out->tnear = 0;
+  // Stop short of the target by its own rounding margin so the surface it lies on never occludes it.
+  out->tfar = std::max(0.0f, dist - surface_epsilon(target, 0) * 4) * (1 - 0x1p-20f);
+  out->mask = 0xFFFFFFFFu;
+  out->flags = 0;
+}
+
+float bounding_sphere(const nimbus_host_t *host, float center[3]) {
+  const GeometryScene &g = *context_of(host).geometry;
+  g.sphere_center().store(center);
+  return g.sphere_radius();
+}
+
+float generate_ray(const nimbus_host_t *host, const nimbus_camera_sample_t *sample, nimbus_ray_t *ray) {
+  context_of(host).camera.generate_ray(*sample, *ray);
+  return 1.0f;
+}
+
+float resolution(const nimbus_host_t *host, uint32_t *width, uint32_t *height) {
+  const Camera &c = context_of(host).camera;
+  if (width) *width = c.width();
+  if (height) *height = c.height();
+  return c.pixel_angle();
+}
+
+}  // namespace
+
+const nimbus_host_scene_query_v1_t kSceneQueryV1 = {
+    sizeof(nimbus_host_scene_query_v1_t), intersect, occluded, interaction, spawn_ray, spawn_ray_to,
+    bounding_sphere};
+
+const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t), generate_ray, resolution};
+
+}  // namespace nimbus

@@ -1,0 +1,43 @@
+// nimbus: the command-line renderer.
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+
+namespace {
+
+constexpr const char *kUsage =
+    "usage: nimbus <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  render SCENE.yaml   render a scene to a multi-layer EXR and a PNG preview\n"
+    "  plugins             list the plugins found, with their status\n"
+    "\n"
+    "  nimbus --version    print the version\n"
+    "  nimbus <command> --help   help on a command\n";
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  using namespace nimbus::cli;
+  if (argc < 2) {
+    std::fputs(kUsage, stderr);
+    return kExitUsage;
+  }
+  const std::string cmd = argv[1];
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  if (cmd == "--version" || cmd == "version") {
+    std::printf("nimbus %s (SDK ABI %d.%d.%d)\n", NIMBUS_VERSION_STRING, 1, 0, 0);
+    return kExitOk;
+  }
+  if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+    std::fputs(kUsage, stdout);
+    return kExitOk;
+  }
+  if (cmd == "render") return render_command(args);
+  if (cmd == "plugins") return plugins_command(args);
+  std::fprintf(stderr, "nimbus: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
+  return kExitUsage;
+}

@@ -1,0 +1,195 @@
+// `nimbus render SCENE`: parse, render progressively, write EXR + PNG. Ctrl-C finishes the current
+// iteration and writes complete files; a second Ctrl-C ends the process at once.
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <charconv>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include "abi/host_services.hpp"
+#include "cli/commands.hpp"
+#include "cli/progress_display.hpp"
+#include "render/plugin_registry.hpp"
+#include "render/render_session.hpp"
+#include "scene/scene_parser.hpp"
+
+namespace nimbus::cli {
+namespace {
+
+constexpr const char *kHelp =
+    "usage: nimbus render SCENE.yaml [options]\n"
+    "\n"
+    "Renders SCENE progressively and writes a multi-layer EXR and a PNG preview beside it.\n"
+    "\n"
+    "options:\n"
+    "  -o, --output OUT.exr   output image (default: out/<scene name>.exr); the PNG gets the same stem\n"
+    "  --iterations N         samples per pixel (overrides the scene)\n"
+    "  --time SECONDS         time budget (overrides the scene); with --iterations, whichever comes first\n"
+    "  --threads N            worker threads (default: all cores)\n"
+    "  --seed S               random seed (overrides the scene)\n"
+    "  --elements a,b,...     render elements besides beauty (added to the scene's)\n"
+    "  --caustics on|off      the caustics solver's switch (scene key render.caustics)\n"
+    "  --integrator ID        integrator plugin (overrides the scene), e.g. pt, nimbus.pt\n"
+    "  -q, --quiet            no progress output\n"
+    "\n"
+    "Ctrl-C stops after the current iteration and writes the image so far (exit code 130).\n";
+
+std::atomic<bool> g_cancel{false};
+
+extern "C" void on_sigint(int) {
+  if (g_cancel.exchange(true)) {
+    // Second Ctrl-C: the user insists. Restore the default action and re-raise.
+    std::signal(SIGINT, SIG_DFL);
+    std::raise(SIGINT);
+  }
+}
+
+struct Args {
+  std::string scene;
+  RenderOptions options;
+  std::optional<std::string> caustics, integrator;
+  bool quiet = false;
+};
+
+template <class T>
+bool parse_number(const std::string &s, T &out) {
+  const char *end = s.data() + s.size();
+  auto [p, ec] = std::from_chars(s.data(), end, out);
+  return ec == std::errc() && p == end;
+}
+
+// Returns an error message, or an empty string on success.
+std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string &k = args[i];
+    auto value = [&](std::string &out) -> bool {
+      if (i + 1 >= args.size()) return false;
+      out = args[++i];
+      return true;
+    };
+    std::string v;
+    if (k == "--help" || k == "-h") {
+      help = true;
+      return "";
+    } else if (k == "-q" || k == "--quiet") {
+      a.quiet = true;
+    } else if (k == "-o" || k == "--output") {
+      if (!value(v) || v.empty()) return k + ": expected a file name";
+      a.options.output_exr = v;
+    } else if (k == "--iterations") {
+      uint64_t n = 0;
+      if (!value(v) || !parse_number(v, n) || n == 0) return "--iterations: expected a positive integer, got '" + v + "'";
+      a.options.iterations = n;
+    } else if (k == "--time") {
+      double t = 0;
+      if (!value(v) || !parse_number(v, t) || !(t > 0)) return "--time: expected a positive number of seconds, got '" + v + "'";
+      a.options.time_seconds = t;
+    } else if (k == "--threads") {
+      uint32_t n = 0;
+      if (!value(v) || !parse_number(v, n) || n == 0 || n > 4096) return "--threads: expected an integer in [1, 4096], got '" + v + "'";
+      a.options.threads = n;
+    } else if (k == "--seed") {
+      uint64_t s = 0;
+      if (!value(v) || !parse_number(v, s)) return "--seed: expected a non-negative integer, got '" + v + "'";
+      a.options.seed = s;
+    } else if (k == "--elements") {
+      if (!value(v) || v.empty()) return "--elements: expected a comma-separated list";
+      std::stringstream ss(v);
+      for (std::string e; std::getline(ss, e, ',');)
+        if (!e.empty()) a.options.elements.push_back(e);
+    } else if (k == "--caustics") {
+      if (!value(v) || (v != "on" && v != "off")) return "--caustics: expected 'on' or 'off', got '" + v + "'";
+      a.caustics = v;
+    } else if (k == "--integrator") {
+      if (!value(v) || v.empty()) return "--integrator: expected a plugin id";
+      a.integrator = v;
+    } else if (!k.empty() && k[0] == '-') {
+      return "unknown option '" + k + "'";
+    } else if (a.scene.empty()) {
+      a.scene = k;
+    } else {
+      return "unexpected argument '" + k + "' (one scene per render)";
+    }
+  }
+  if (a.scene.empty()) return "no scene given";
+  return "";
+}
+
+}  // namespace
+
+int render_command(const std::vector<std::string> &argv) {
+  Args a;
+  bool help = false;
+  if (const std::string err = parse_args(argv, a, help); !err.empty()) {
+    std::fprintf(stderr, "nimbus render: %s\n\n%s", err.c_str(), kHelp);
+    return kExitUsage;
+  }
+  if (help) {
+    std::fputs(kHelp, stdout);
+    return kExitOk;
+  }
+  auto scene = parse_scene_file(a.scene);
+  if (!scene) {
+    std::fprintf(stderr, "%s\n", scene.error().message.c_str());
+    return kExitFailure;
+  }
+  SceneDesc &desc = scene.value();
+  if (a.caustics) desc.render.options["caustics"] = *a.caustics;
+  if (a.integrator) desc.render.integrator = *a.integrator;
+  if (a.options.output_exr.empty())
+    a.options.output_exr = (std::filesystem::path("out") / std::filesystem::path(a.scene).stem()).string() + ".exr";
+  {
+    // Create the output directory so a render never fails at the very end for want of it.
+    std::error_code ec;
+    const auto parent = std::filesystem::path(a.options.output_exr).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+    if (ec) {
+      std::fprintf(stderr, "nimbus render: cannot create directory %s: %s\n", parent.c_str(), ec.message().c_str());
+      return kExitFailure;
+    }
+  }
+
+  HostServices discovery_host(nullptr);
+  PluginRegistry registry;
+  registry.discover(PluginRegistry::default_search_paths(executable_path()), discovery_host.host());
+
+  struct sigaction sa {};
+  sa.sa_handler = on_sigint;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+
+  ProgressDisplay display(stderr, isatty(STDERR_FILENO) != 0, a.quiet);
+  auto result = render(
+      desc, a.options, registry, g_cancel, [&](const RenderProgress &p) { display.update(p); },
+      [&](int level, const std::string &line) {
+        if (level < NIMBUS_LOG_WARNING) return;
+        display.finish();
+        std::fprintf(stderr, "nimbus: %s: %s\n", level >= NIMBUS_LOG_ERROR ? "error" : "warning", line.c_str());
+      });
+  display.finish();
+  if (!result) {
+    std::fprintf(stderr, "nimbus: error: %s\n", result.error().message.c_str());
+    return kExitFailure;
+  }
+  const RenderResult &r = result.value();
+  if (!a.quiet)
+    std::fprintf(stderr, "nimbus: %llu iterations in %.2f s -> %s, %s%s\n", (unsigned long long)r.iterations, r.seconds,
+                 r.exr_path.c_str(), r.png_path.c_str(), r.cancelled ? " (interrupted)" : "");
+  if (r.nonfinite_samples)
+    std::fprintf(stderr, "nimbus: warning: %llu samples were NaN or infinite and were discarded\n",
+                 (unsigned long long)r.nonfinite_samples);
+  return r.cancelled ? kExitInterrupted : kExitOk;
+}
+
+std::string executable_path() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : p.string();
+}
+
+}  // namespace nimbus::cli

@@ -1,0 +1,191 @@
+#include "geometry/geometry_scene.hpp"
+
+#include <cstring>
+#include <string>
+
+#include "geometry/analytic_shapes.hpp"
+
+namespace nimbus {
+namespace {
+
+float triangle_area(const Vec3f &a, const Vec3f &b, const Vec3f &c) { return 0.5f * length(cross(b - a, c - a)); }
+
+RTCGeometry make_triangle_geometry(RTCDevice device, const MeshData &mesh) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  // Embree reads 16 bytes per vertex (SSE loads): allocate through Embree so the padding is handled.
+  auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                         3 * sizeof(float), mesh.positions.size()));
+  for (size_t i = 0; i < mesh.positions.size(); ++i) mesh.positions[i].store(v + 3 * i);
+  auto *idx = static_cast<uint32_t *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                              3 * sizeof(uint32_t), mesh.indices.size() / 3));
+  std::memcpy(idx, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+  rtcCommitGeometry(g);
+  return g;
+}
+
+void set_vec(float out[3], const Vec3f &v) { v.store(out); }
+
+}  // namespace
+
+Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &desc) {
+  std::unique_ptr<GeometryScene> gs(new GeometryScene());
+  gs->device_ = rtcNewDevice(nullptr);
+  if (!gs->device_) return Error{"cannot create the Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")"};
+  gs->scene_ = rtcNewScene(gs->device_);
+  rtcSetSceneFlags(gs->scene_, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(gs->scene_, RTC_BUILD_QUALITY_HIGH);
+
+  gs->shapes_.reserve(desc.shapes.size());  // records are Embree user pointers: no reallocation after this
+  for (const ShapeDesc &sd : desc.shapes) {
+    ShapeRecord rec;
+    rec.type = sd.type;
+    rec.material = sd.material;
+    rec.two_sided = sd.two_sided;
+    rec.center = sd.center;
+    rec.normal = sd.normal;
+    rec.radius = sd.radius;
+    RTCGeometry g;
+    if (sd.type == ShapeType::Sphere || sd.type == ShapeType::Disk) {
+      rec.area = sd.type == ShapeType::Sphere ? 4 * kPi * sqr(sd.radius) : kPi * sqr(sd.radius);
+      const Vec3f r(sd.radius);
+      gs->bounds_min_ = min(gs->bounds_min_, sd.center - r);
+      gs->bounds_max_ = max(gs->bounds_max_, sd.center + r);
+      gs->shapes_.push_back(rec);
+      g = make_analytic_geometry(gs->device_, gs->shapes_.back());
+    } else {
+      rec.mesh = &sd.mesh;
+      const auto &p = sd.mesh.positions;
+      for (size_t t = 0; t + 2 < sd.mesh.indices.size(); t += 3)
+        rec.area += triangle_area(p[sd.mesh.indices[t]], p[sd.mesh.indices[t + 1]], p[sd.mesh.indices[t + 2]]);
+      for (const Vec3f &q : p) gs->bounds_min_ = min(gs->bounds_min_, q), gs->bounds_max_ = max(gs->bounds_max_, q);
+      gs->shapes_.push_back(rec);
+      g = make_triangle_geometry(gs->device_, sd.mesh);
+    }
+    rtcAttachGeometryByID(gs->scene_, g, uint32_t(gs->shapes_.size() - 1));
+    rtcReleaseGeometry(g);
+  }
+  if (gs->shapes_.empty()) gs->bounds_min_ = gs->bounds_max_ = Vec3f(0);
+  rtcCommitScene(gs->scene_);
+  if (const RTCError err = rtcGetDeviceError(gs->device_); err != RTC_ERROR_NONE)
+    return Error{"Embree failed to build the scene (error " + std::to_string(int(err)) + ")"};
+  return gs;
+}
+
+GeometryScene::~GeometryScene() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+void GeometryScene::intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.org[0], rh.ray.org_y = ray.org[1], rh.ray.org_z = ray.org[2];
+  rh.ray.dir_x = ray.dir[0], rh.ray.dir_y = ray.dir[1], rh.ray.dir_z = ray.dir[2];
+  rh.ray.tnear = ray.tnear, rh.ray.tfar = ray.tfar;
+  rh.ray.time = 0, rh.ray.mask = 0xFFFFFFFFu, rh.ray.id = 0, rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  if (!(ray.tnear <= ray.tfar)) {  // inactive ray
+    hit.geom_id = NIMBUS_NONE;
+    return;
+  }
+  rtcIntersect1(scene_, &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    hit = {kInfinity, 0, 0, NIMBUS_NONE, NIMBUS_NONE, NIMBUS_NONE};
+    return;
+  }
+  hit = {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID, NIMBUS_NONE};
+}
+
+bool GeometryScene::occluded(const nimbus_ray_t &ray) const {
+  if (!(ray.tnear <= ray.tfar)) return false;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay r;
+  r.org_x = ray.org[0], r.org_y = ray.org[1], r.org_z = ray.org[2];
+  r.dir_x = ray.dir[0], r.dir_y = ray.dir[1], r.dir_z = ray.dir[2];
+  r.tnear = ray.tnear, r.tfar = ray.tfar;
+  r.time = 0, r.mask = 0xFFFFFFFFu, r.id = 0, r.flags = 0;
+  rtcOccluded1(scene_, &ctx, &r);
+  return r.tfar < 0;
+}
+
+void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out) const {
+  std::memset(&out, 0, sizeof(out));
+  const ShapeRecord &s = shapes_[hit.geom_id];
+  const Vec3f org = Vec3f::load(ray.org), dir = Vec3f::load(ray.dir);
+  Vec3f p, ng, ns, dpdu, dpdv;
+  Vec2f uv;
+  float magnitude = 0;
+  switch (s.type) {
+    case ShapeType::Sphere: {
+      // Re-project the hit onto the sphere: removes the error of o + t d along the ray.
+      const Vec3f d = org + dir * hit.t - s.center;
+      ng = normalize(d);
+      p = s.center + ng * s.radius;
+      ns = ng;
+      const float phi = std::atan2(ng.y, ng.x), theta = std::acos(clamp(ng.z, -1, 1));
+      uv = {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), theta / kPi};
+      dpdu = Vec3f{-ng.y, ng.x, 0} * (2 * kPi * s.radius);
+      if (length_squared(dpdu) == 0) dpdu = Frame::from_normal(ng).s;
+      dpdv = cross(ng, dpdu);
+      magnitude = max_component(abs(s.center)) + s.radius;
+      break;
+    }
+    case ShapeType::Disk: {
+      p = org + dir * hit.t;
+      p -= s.normal * dot(p - s.center, s.normal);  // onto the plane
+      ng = ns = s.normal;
+      const Frame f = Frame::from_normal(s.normal);
+      const Vec3f l = f.to_local(p - s.center);
+      uv = {0.5f + 0.5f * l.x / s.radius, 0.5f + 0.5f * l.y / s.radius};
+      dpdu = f.s, dpdv = f.t;
+      magnitude = max_component(abs(s.center)) + s.radius;
+      break;
+    }
+    default: {
+      const MeshData &m = *s.mesh;
+      const uint32_t i0 = m.indices[3 * hit.prim_id], i1 = m.indices[3 * hit.prim_id + 1],
+                     i2 = m.indices[3 * hit.prim_id + 2];
+      const Vec3f &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
+      const float b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
+      // Barycentric interpolation is far more accurate than o + t d (pbrt-v4 section 6.8).
+      p = p0 * b0 + p1 * b1 + p2 * b2;
+      const Vec3f e1 = p1 - p0, e2 = p2 - p0;
+      ng = oriented_triangle_normal(m, hit.prim_id, b1, b2);
+      Vec2f uv0{0, 0}, uv1{1, 0}, uv2{1, 1};
+      if (!m.uvs.empty()) uv0 = m.uvs[i0], uv1 = m.uvs[i1], uv2 = m.uvs[i2];
+      uv = {uv0.x * b0 + uv1.x * b1 + uv2.x * b2, uv0.y * b0 + uv1.y * b1 + uv2.y * b2};
+      const float du1 = uv1.x - uv0.x, du2 = uv2.x - uv0.x, dv1 = uv1.y - uv0.y, dv2 = uv2.y - uv0.y;
+      const float det = du1 * dv2 - dv1 * du2;
+      if (std::abs(det) > 1e-12f) {
+        dpdu = (e1 * dv2 - e2 * dv1) / det;
+        dpdv = (e2 * du1 - e1 * du2) / det;
+      } else {
+        const Frame f = Frame::from_normal(ng);
+        dpdu = f.s, dpdv = f.t;
+      }
+      ns = ng;
+      if (!m.normals.empty()) {
+        const Vec3f n = m.normals[i0] * b0 + m.normals[i1] * b1 + m.normals[i2] * b2;
+        if (length_squared(n) > 0) ns = normalize(n);
+      }
+      magnitude = std::max({max_component(abs(p0)), max_component(abs(p1)), max_component(abs(p2))});
+      break;
+    }
+  }
+  set_vec(out.p, p);
+  out.eps = surface_epsilon(p, magnitude);
+  set_vec(out.ng, ng);
+  set_vec(out.ns, ns);
+  set_vec(out.dpdu, dpdu);
+  set_vec(out.dpdv, dpdv);
+  out.uv[0] = uv.x, out.uv[1] = uv.y;
+  out.material = s.material;
+  out.light_id = s.light_id;
+  out.flags = (dot(dir, ng) < 0 ? NIMBUS_IX_FRONT_FACE : 0u) |
+              (s.light_id != NIMBUS_NONE ? NIMBUS_IX_EMISSIVE : 0u) | (s.two_sided ? NIMBUS_IX_TWO_SIDED : 0u);
+}
+
+}  // namespace nimbus

@@ -1,0 +1,82 @@
+// The scene's geometry in Embree 3: one Embree geometry per scene shape (geom_id = shape index),
+// closest-hit and occlusion queries, and the surface details (interaction) of a hit.
+#pragma once
+
+#include <embree3/rtcore.h>
+#include <nimbus/scene.h>
+
+#include <memory>
+#include <vector>
+
+#include "core/expected.hpp"
+#include "core/math.hpp"
+#include "scene/scene_desc.hpp"
+
+namespace nimbus {
+
+// What the host knows about a shape beyond its triangles: material, emitter, analytic parameters.
+struct ShapeRecord {
+  ShapeType type = ShapeType::Mesh;
+  uint32_t material = 0;
+  uint32_t light_id = NIMBUS_NONE;  // set by the light set when the shape emits
+  bool two_sided = false;
+  Vec3f center, normal;  // sphere, disk
+  float radius = 0;
+  const MeshData *mesh = nullptr;  // triangle shapes: points into the SceneDesc (kept alive by the owner)
+  float area = 0;
+};
+
+class GeometryScene {
+ public:
+  // Builds the BVH. `desc` must outlive the GeometryScene (meshes are referenced, not copied).
+  static Expected<std::unique_ptr<GeometryScene>> build(const SceneDesc &desc);
+  ~GeometryScene();
+  GeometryScene(const GeometryScene &) = delete;
+  GeometryScene &operator=(const GeometryScene &) = delete;
+
+  void intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit) const;
+  bool occluded(const nimbus_ray_t &ray) const;
+  void interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out) const;
+
+  std::vector<ShapeRecord> &shapes() { return shapes_; }
+  const std::vector<ShapeRecord> &shapes() const { return shapes_; }
+  Vec3f bounds_min() const { return bounds_min_; }
+  Vec3f bounds_max() const { return bounds_max_; }
+  // Bounding sphere of everything (centre, radius).
+  Vec3f sphere_center() const { return (bounds_min_ + bounds_max_) * 0.5f; }
+  float sphere_radius() const { return 0.5f * length(bounds_max_ - bounds_min_); }
+
+ private:
+  GeometryScene() = default;
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  std::vector<ShapeRecord> shapes_;
+  Vec3f bounds_min_{kInfinity}, bounds_max_{-kInfinity};
+};
+
+// Geometric normal of triangle `prim` of a mesh, oriented like the interaction's ng: towards the
+// interpolated shading normal when the mesh has normals, else by the winding (right-handed).
+inline Vec3f oriented_triangle_normal(const MeshData &m, uint32_t prim, float b1, float b2) {
+  const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
+  Vec3f ng = normalize(cross(m.positions[i1] - m.positions[i0], m.positions[i2] - m.positions[i0]));
+  if (!m.normals.empty()) {
+    const Vec3f n = m.normals[i0] * (1 - b1 - b2) + m.normals[i1] * b1 + m.normals[i2] * b2;
+    if (dot(n, ng) < 0) ng = -ng;
+  }
+  return ng;
+}
+
+// Offset that moves a point at `p` off a surface whose defining coordinates are at most `magnitude`
+// in absolute value: a few hundred float ulps of the largest coordinate involved, so it scales with
+// the scene from 1e-4 to 1e6 units.
+inline float surface_epsilon(const Vec3f &p, float magnitude) {
+  const float m = std::max(max_component(abs(p)), magnitude);
+  return std::max(m * 0x1p-18f, 0x1p-100f);
+}
+
+// A ray leaving p along dir, its origin pushed by eps along the side of ng that dir points to.
+inline Vec3f offset_origin(const Vec3f &p, const Vec3f &ng, float eps, const Vec3f &dir) {
+  return p + ng * (dot(ng, dir) >= 0 ? eps : -eps);
+}
+
+}  // namespace nimbus

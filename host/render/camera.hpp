@@ -1,0 +1,61 @@
+// Perspective camera with an optional thin lens. The horizontal field of view spans the image width.
+#pragma once
+
+#include <nimbus/scene.h>
+
+#include "core/math.hpp"
+#include "core/sampling.hpp"
+#include "scene/scene_desc.hpp"
+
+namespace nimbus {
+
+class Camera {
+ public:
+  Camera() = default;
+  Camera(const CameraDesc &d, uint32_t width, uint32_t height) : width_(width), height_(height) {
+    const Vec3f forward = normalize(d.look_at - d.position);
+    const Vec3f right = normalize(cross(forward, d.up));
+    const Vec3f up = cross(right, forward);
+    frame_ = {right, up, forward};
+    origin_ = d.position;
+    tan_half_ = std::tan(radians(d.fov_degrees) * 0.5f);
+    aperture_ = d.aperture;
+    focus_ = d.focus_distance > 0 ? d.focus_distance : length(d.look_at - d.position);
+  }
+
+  // Primary ray through raster position (fx, fy): x to the right, y down, pixel centres at +0.5.
+  void generate_ray(const nimbus_camera_sample_t &s, nimbus_ray_t &ray) const {
+    const float aspect = float(height_) / float(width_);
+    const float sx = (2 * s.film[0] / float(width_) - 1) * tan_half_;
+    const float sy = (1 - 2 * s.film[1] / float(height_)) * tan_half_ * aspect;
+    Vec3f dir_cam{sx, sy, 1};  // camera space: x right, y up, z forward
+    Vec3f org_cam{0, 0, 0};
+    if (aperture_ > 0) {
+      const Vec2f l = sample_uniform_disk_concentric(s.lens[0], s.lens[1]);
+      org_cam = Vec3f{l.x * aperture_, l.y * aperture_, 0};
+      dir_cam = dir_cam * focus_ - org_cam;  // through the in-focus point on the plane z = focus
+    }
+    const Vec3f dir = normalize(frame_.s * dir_cam.x + frame_.t * dir_cam.y + frame_.n * dir_cam.z);
+    const Vec3f org = origin_ + frame_.s * org_cam.x + frame_.t * org_cam.y;
+    org.store(ray.org);
+    dir.store(ray.dir);
+    ray.tnear = 0;
+    ray.tfar = kInfinity;
+    ray.mask = 0xFFFFFFFFu;
+    ray.flags = 0;
+  }
+
+  // Angular width of one pixel at the image centre.
+  float pixel_angle() const { return 2 * std::atan(tan_half_ / float(width_)); }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  Vec3f position() const { return origin_; }
+
+ private:
+  uint32_t width_ = 1, height_ = 1;
+  Frame frame_{};
+  Vec3f origin_;
+  float tan_half_ = 1, aperture_ = 0, focus_ = 1;
+};
+
+}  // namespace nimbus

@@ -1,0 +1,243 @@
+#include "render/render_session.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include <tbb/parallel_for.h>
+
+#include "abi/host_services.hpp"
+#include "render/plugin_registry.hpp"
+#include "render/render_context.hpp"
+
+namespace nimbus {
+namespace {
+
+constexpr uint32_t kTileSize = 32;
+constexpr uint64_t kDefaultIterations = 64;
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// A plugin instance owned for the duration of the render.
+struct PluginHandle {
+  PluginRegistry *registry = nullptr;
+  const nimbus_plugin_t *plugin = nullptr;
+  PluginHandle() = default;
+  PluginHandle(const PluginHandle &) = delete;
+  PluginHandle &operator=(const PluginHandle &) = delete;
+  ~PluginHandle() {
+    if (plugin) registry->destroy(plugin);
+  }
+};
+
+template <class Table>
+Expected<const Table *> interface_of(const nimbus_plugin_t *plugin, const char *iface, size_t min_size) {
+  const auto *t = static_cast<const Table *>(plugin->get_interface(plugin, iface, 1));
+  if (!t) return Error{std::string("plugin '") + plugin->desc->id + "' does not provide " + iface + "@1"};
+  if (t->struct_size < min_size)
+    return Error{std::string("plugin '") + plugin->desc->id + "': " + iface + " table is too small (" +
+                 std::to_string(t->struct_size) + " bytes)"};
+  return t;
+}
+
+std::string png_path_for(const std::string &exr) {
+  std::filesystem::path p(exr);
+  p.replace_extension(".png");
+  return p.string();
+}
+
+std::string status_text(nimbus_status_t s) {
+  switch (s) {
+    case NIMBUS_E_INVALID_ARG: return "invalid argument";
+    case NIMBUS_E_UNSUPPORTED: return "unsupported";
+    case NIMBUS_E_NO_MEMORY: return "out of memory";
+    case NIMBUS_E_VERSION: return "version mismatch";
+    case NIMBUS_E_CANCELLED: return "cancelled";
+    case NIMBUS_E_INTERNAL: return "internal error";
+    default: return "status " + std::to_string(s);
+  }
+}
+
+}  // namespace
+
+Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &options, PluginRegistry &registry,
+                              std::atomic<bool> &cancel, const ProgressFn &progress, const MessageFn &message) {
+  SceneDesc desc_copy;  // only when the CLI overrides the seed
+  const SceneDesc *desc = &desc_in;
+  if (options.seed) {
+    desc_copy = desc_in;
+    desc_copy.render.seed = *options.seed;
+    desc = &desc_copy;
+  }
+  auto built = RenderContext::build(*desc, options.threads);
+  if (!built) return built.error();
+  RenderContext &ctx = *built.value();
+  ctx.cancel = &cancel;
+  ctx.log = [&](int level, const std::string &id, const std::string &msg) {
+    if (message) message(level, id.empty() ? msg : id + ": " + msg);
+  };
+  HostServices services(&ctx);
+  const nimbus_host_t *host = services.host();
+
+  // Plugins: the integrator the scene names and the light sampler.
+  PluginHandle integrator, sampler;
+  auto ip = registry.create(desc->render.integrator, NIMBUS_KIND_INTEGRATOR, host);
+  if (!ip) return Error{desc->path + ": integrator: " + ip.error().message};
+  integrator.registry = &registry, integrator.plugin = ip.value();
+  auto sp = registry.create(options.light_sampler, NIMBUS_KIND_LIGHT_SAMPLER, host);
+  if (!sp) return Error{"light sampler: " + sp.error().message};
+  sampler.registry = &registry, sampler.plugin = sp.value();
+  auto iface = interface_of<nimbus_integrator_v1_t>(integrator.plugin, NIMBUS_IFACE_INTEGRATOR,
+                                                    sizeof(nimbus_integrator_v1_t));
+  if (!iface) return iface.error();
+  auto siface = interface_of<nimbus_light_sampler_v1_t>(sampler.plugin, NIMBUS_IFACE_LIGHT_SAMPLER,
+                                                        offsetof(nimbus_light_sampler_v1_t, record));
+  if (!siface) return siface.error();
+  const nimbus_integrator_v1_t &it = *iface.value();
+  const nimbus_light_sampler_v1_t &ls = *siface.value();
+  const std::string integrator_id = integrator.plugin->desc->id;
+
+  // Prepare: the sampler builds its tables, the integrator registers its elements; then the film
+  // allocates exactly what was requested.
+  nimbus_scene_info_t scene_info{};
+  scene_info.header = {sizeof(scene_info), NIMBUS_S_TYPE_SCENE_INFO, nullptr};
+  scene_info.light_count = ctx.lights.count();
+  scene_info.worker_count = ctx.worker_count;
+  ctx.geometry->sphere_center().store(scene_info.scene_center);
+  scene_info.scene_radius = ctx.geometry->sphere_radius();
+  if (nimbus_status_t s = ls.prepare(sampler.plugin, &scene_info); s != NIMBUS_OK)
+    return Error{"light sampler '" + std::string(sampler.plugin->desc->id) + "' failed to prepare: " + status_text(s)};
+
+  std::vector<nimbus_option_t> opts;
+  for (const auto &[k, v] : desc->render.options) opts.push_back({k.c_str(), v.c_str()});
+  nimbus_render_setup_t setup{};
+  setup.header = {sizeof(setup), NIMBUS_S_TYPE_RENDER_SETUP, nullptr};
+  setup.width = desc->render.width;
+  setup.height = desc->render.height;
+  setup.max_depth = desc->render.max_depth;
+  setup.option_count = uint32_t(opts.size());
+  setup.seed = desc->render.seed;
+  setup.options = opts.data();
+  setup.light_sampler = sampler.plugin;
+  setup.light_sampler_iface = &ls;
+  if (nimbus_status_t s = it.prepare(integrator.plugin, &setup); s != NIMBUS_OK)
+    return Error{"integrator '" + integrator_id + "' failed to prepare: " + status_text(s)};
+
+  Film &film = *ctx.film;
+  for (const std::string &e : desc->render.elements) film.request(e);
+  for (const std::string &e : options.elements) film.request(e);
+  if (Status s = film.allocate(); !s) return s.error();
+  film.set_worker_count(ctx.worker_count);
+
+  const uint64_t iterations = options.iterations   ? *options.iterations
+                              : desc->render.iterations ? desc->render.iterations
+                              : (options.time_seconds || desc->render.time_seconds > 0) ? 0
+                                                                                         : kDefaultIterations;
+  const double budget = options.time_seconds ? *options.time_seconds : desc->render.time_seconds;
+
+  nimbus_render_info_t info{};
+  info.header = {sizeof(info), NIMBUS_S_TYPE_RENDER_INFO, nullptr};
+  info.worker_count = ctx.worker_count;
+  info.first_iteration = 1;
+  info.planned_iterations = iterations;
+  if (nimbus_status_t s = it.begin_render(integrator.plugin, &info); s != NIMBUS_OK)
+    return Error{"integrator '" + integrator_id + "' failed to begin the render: " + status_text(s)};
+
+  // Tiles in row-major order; each is rendered by exactly one worker per iteration.
+  const uint32_t w = desc->render.width, h = desc->render.height;
+  std::vector<nimbus_tile_t> tiles;
+  for (uint32_t y = 0; y < h; y += kTileSize)
+    for (uint32_t x = 0; x < w; x += kTileSize) tiles.push_back({x, y, std::min(w, x + kTileSize), std::min(h, y + kTileSize), 0});
+
+  const auto t0 = Clock::now();
+  nimbus_status_t failure = NIMBUS_OK;
+  std::string failure_hook;
+  uint64_t done = 0;
+  while (!cancel.load()) {
+    if (iterations && done >= iterations) break;
+    if (budget > 0 && done > 0) {
+      // Stop when another iteration would overrun the budget (estimated from the mean so far).
+      const double elapsed = seconds_since(t0);
+      if (elapsed + elapsed / double(done) > budget) break;
+    }
+    const uint64_t i = done + 1;
+    if (nimbus_status_t s = it.begin_iteration(integrator.plugin, i); s != NIMBUS_OK) {
+      failure = s, failure_hook = "begin_iteration";
+      break;
+    }
+    std::atomic<nimbus_status_t> tile_status{NIMBUS_OK};
+    ctx.arena->execute([&] {
+      tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
+        const int wi = tbb::this_task_arena::current_thread_index();
+        nimbus_thread_ctx_t tc{sizeof(nimbus_thread_ctx_t), uint32_t(wi < 0 ? 0 : wi), ctx.worker_count, 0, nullptr, 0};
+        nimbus_tile_t tile = tiles[t];
+        tile.iteration = i;
+        if (nimbus_status_t s = it.render_tile(integrator.plugin, &tc, &tile); s != NIMBUS_OK) {
+          nimbus_status_t expected = NIMBUS_OK;
+          tile_status.compare_exchange_strong(expected, s);
+        }
+      });
+    });
+    if (tile_status.load() != NIMBUS_OK) {
+      failure = tile_status.load(), failure_hook = "render_tile";
+      break;
+    }
+    film.merge_splats();
+    if (ls.end_iteration) ls.end_iteration(sampler.plugin, i);
+    if (nimbus_status_t s = it.end_iteration(integrator.plugin, i); s != NIMBUS_OK) {
+      failure = s, failure_hook = "end_iteration";
+      break;
+    }
+    film.end_iteration();
+    done = i;
+    if (progress) {
+      RenderProgress p;
+      p.iteration = done;
+      p.total_iterations = iterations;
+      p.elapsed_seconds = seconds_since(t0);
+      p.time_budget = budget;
+      p.samples_per_second = double(w) * h * done / std::max(p.elapsed_seconds, 1e-9);
+      std::lock_guard lock(ctx.phase_mutex);
+      p.phase = ctx.phase;
+      progress(p);
+    }
+  }
+  const double seconds = seconds_since(t0);
+  const bool was_cancelled = cancel.load();
+  it.end_render(integrator.plugin, failure != NIMBUS_OK ? failure : (was_cancelled ? NIMBUS_E_CANCELLED : NIMBUS_OK));
+
+  // Write what we have, whatever ended the loop.
+  RenderResult result;
+  result.iterations = done;
+  result.seconds = seconds;
+  result.cancelled = was_cancelled;
+  result.nonfinite_samples = film.nonfinite_count();
+  result.exr_path = options.output_exr;
+  result.png_path = png_path_for(options.output_exr);
+  std::vector<std::pair<std::string, std::string>> smeta = {
+      {"nimbus:version", NIMBUS_VERSION_STRING},
+      {"nimbus:integrator", integrator_id},
+      {"nimbus:light_sampler", sampler.plugin->desc->id},
+      {"nimbus:scene", desc->path},
+      {"nimbus:stopped_by", failure != NIMBUS_OK ? "error" : was_cancelled ? "cancel" : (iterations && done >= iterations) ? "iterations" : "time"}};
+  std::vector<std::pair<std::string, double>> nmeta = {{"nimbus:iterations", double(done)},
+                                                       {"nimbus:seconds", seconds},
+                                                       {"nimbus:seed", double(desc->render.seed)},
+                                                       {"nimbus:threads", double(ctx.worker_count)},
+                                                       {"nimbus:nonfinite_samples", double(film.nonfinite_count())}};
+  {
+    std::lock_guard lock(ctx.stats_mutex);
+    for (const auto &[k, v] : ctx.stats) nmeta.push_back({"nimbus:stat:" + k, v});
+  }
+  if (Status s = film.write_exr(result.exr_path, smeta, nmeta); !s) return s.error();
+  const std::string ocio = options.ocio_config.empty() ? default_ocio_config_path() : options.ocio_config;
+  if (Status s = film.write_png(result.png_path, ocio); !s) return s.error();
+  if (failure != NIMBUS_OK)
+    return Error{"integrator '" + integrator_id + "' failed in " + failure_hook + " (" + status_text(failure) +
+                 "); the image so far (" + std::to_string(done) + " iterations) was written to " + result.exr_path};
+  return result;
+}
+
+}  // namespace nimbus
