@@ -5,15 +5,23 @@
 namespace nimbus {
 namespace {
 
-void intersect(const nimbus_host_t *host, const nimbus_thread_ctx_t *, const nimbus_ray_t *rays,
+void count_rays(RenderContext &ctx, const nimbus_thread_ctx_t *tc, uint32_t n) {
+  if (tc && tc->worker_index < ctx.ray_counters.size()) ctx.ray_counters[tc->worker_index].rays += n;
+}
+
+void intersect(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_ray_t *rays,
                nimbus_hit_t *hits, uint32_t n) {
-  const GeometryScene &g = *context_of(host).geometry;
+  RenderContext &ctx = context_of(host);
+  count_rays(ctx, tc, n);
+  const GeometryScene &g = *ctx.geometry;
   for (uint32_t i = 0; i < n; ++i) g.intersect(rays[i], hits[i]);
 }
 
-void occluded(const nimbus_host_t *host, const nimbus_thread_ctx_t *, const nimbus_ray_t *rays, uint8_t *blocked,
+void occluded(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_ray_t *rays, uint8_t *blocked,
               uint32_t n) {
-  const GeometryScene &g = *context_of(host).geometry;
+  RenderContext &ctx = context_of(host);
+  count_rays(ctx, tc, n);
+  const GeometryScene &g = *ctx.geometry;
   for (uint32_t i = 0; i < n; ++i) blocked[i] = g.occluded(rays[i]) ? 1 : 0;
 }
 

@@ -38,6 +38,7 @@ class GeometryScene {
   bool occluded(const nimbus_ray_t &ray) const;
   void interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out) const;
 
+  RTCScene rtc_scene() const { return scene_; }  // for benchmarks against Embree itself
   std::vector<ShapeRecord> &shapes() { return shapes_; }
   const std::vector<ShapeRecord> &shapes() const { return shapes_; }
   Vec3f bounds_min() const { return bounds_min_; }

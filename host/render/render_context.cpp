@@ -18,6 +18,7 @@ Expected<std::unique_ptr<RenderContext>> RenderContext::build(const SceneDesc &d
   const int n = threads > 0 ? int(threads) : tbb::this_task_arena::max_concurrency();
   ctx->arena = std::make_unique<tbb::task_arena>(n);
   ctx->worker_count = uint32_t(n);
+  ctx->ray_counters.resize(size_t(n));
   ctx->main_thread = std::this_thread::get_id();
   return ctx;
 }

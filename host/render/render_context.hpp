@@ -40,6 +40,17 @@ struct RenderContext {
   std::atomic<bool> *cancel = nullptr;  // set by Ctrl-C or the time budget; owned by the caller
   LogFn log;
 
+  // Rays traced, per worker (cache-line padded so counting costs no contention); summed after the render.
+  struct alignas(64) RayCounter {
+    uint64_t rays = 0;
+  };
+  std::vector<RayCounter> ray_counters;
+  uint64_t rays_traced() const {
+    uint64_t n = 0;
+    for (const RayCounter &c : ray_counters) n += c.rays;
+    return n;
+  }
+
   // Statistics plugins add through the progress service (written into the EXR metadata).
   std::mutex stats_mutex;
   std::map<std::string, double> stats;

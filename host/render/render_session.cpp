@@ -214,6 +214,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   result.seconds = seconds;
   result.cancelled = was_cancelled;
   result.nonfinite_samples = film.nonfinite_count();
+  result.rays = ctx.rays_traced();
   result.exr_path = options.output_exr;
   result.png_path = png_path_for(options.output_exr);
   std::vector<std::pair<std::string, std::string>> smeta = {
@@ -226,7 +227,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
                                                        {"nimbus:seconds", seconds},
                                                        {"nimbus:seed", double(desc->render.seed)},
                                                        {"nimbus:threads", double(ctx.worker_count)},
-                                                       {"nimbus:nonfinite_samples", double(film.nonfinite_count())}};
+                                                       {"nimbus:nonfinite_samples", double(film.nonfinite_count())},
+                                                       {"nimbus:rays", double(result.rays)}};
   {
     std::lock_guard lock(ctx.stats_mutex);
     for (const auto &[k, v] : ctx.stats) nmeta.push_back({"nimbus:stat:" + k, v});

@@ -42,6 +42,7 @@ struct RenderResult {
   double seconds = 0;
   bool cancelled = false;
   uint64_t nonfinite_samples = 0;
+  uint64_t rays = 0;  // closest-hit and shadow rays traced
   std::string exr_path, png_path;
 };
 
