@@ -18,7 +18,7 @@ nimbus_status_t info(const nimbus_host_t *host, uint32_t light, nimbus_light_inf
   std::memset(reinterpret_cast<char *>(out) + sizeof(nimbus_struct_header_t), 0,
               sizeof(nimbus_light_info_t) - sizeof(nimbus_struct_header_t));
   out->header = {size, NIMBUS_S_TYPE_LIGHT_INFO, next};
-  light_fill_info(ctx.lights[light], *ctx.geometry, *out);
+  light_fill_info(ctx.lights[light], ctx.lights.scene(), *out);
   return NIMBUS_OK;
 }
 
@@ -29,14 +29,14 @@ void sample_incident(const nimbus_host_t *host, uint32_t light, const nimbus_int
     std::memset(out, 0, sizeof(*out));
     return;
   }
-  light_sample_incident(ctx.lights[light], *ctx.geometry, *ix, u, *out);
+  light_sample_incident(ctx.lights[light], ctx.lights.scene(), *ix, u, *out);
 }
 
 float pdf_incident(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ref, const float wi[3],
                    const nimbus_interaction_t *on_light) {
   const RenderContext &ctx = context_of(host);
   if (light >= ctx.lights.count()) return 0;
-  return light_pdf_incident(ctx.lights[light], *ctx.geometry, *ref, Vec3f::load(wi), on_light);
+  return light_pdf_incident(ctx.lights[light], ctx.lights.scene(), *ref, Vec3f::load(wi), on_light);
 }
 
 void eval_emitted(const nimbus_host_t *host, const nimbus_interaction_t *on_light, const float wo[3], float L[3]) {
@@ -48,8 +48,9 @@ void eval_emitted(const nimbus_host_t *host, const nimbus_interaction_t *on_ligh
   light_eval_emitted(ctx.lights[on_light->light_id], *on_light, Vec3f::load(wo)).store(L);
 }
 
-void eval_infinite(const nimbus_host_t *, uint32_t, const float[3], float L[3]) {
-  Rgb(0).store(L);  // scene v0 has no infinite lights
+void eval_infinite(const nimbus_host_t *host, uint32_t light, const float dir[3], float L[3]) {
+  const RenderContext &ctx = context_of(host);
+  (light < ctx.lights.count() ? light_eval_infinite(ctx.lights[light], Vec3f::load(dir)) : Rgb(0)).store(L);
 }
 
 void sample_emission(const nimbus_host_t *host, uint32_t light, const float u[4], nimbus_light_emission_t *out) {
@@ -58,7 +59,7 @@ void sample_emission(const nimbus_host_t *host, uint32_t light, const float u[4]
     std::memset(out, 0, sizeof(*out));
     return;
   }
-  light_sample_emission(ctx.lights[light], *ctx.geometry, u, *out);
+  light_sample_emission(ctx.lights[light], ctx.lights.scene(), u, *out);
 }
 
 }  // namespace

@@ -1,3 +1,4 @@
+// Dispatch over light kinds, and the parts every infinite light shares (the emission disk).
 #include "lights/light.hpp"
 
 #include <cstring>
@@ -5,200 +6,212 @@
 #include "core/sampling.hpp"
 
 namespace nimbus {
+
+Vec3f environment_sample(const EnvironmentLight &env, float u0, float u1, float &pdf);
+
 namespace {
 
-struct SurfacePoint {
-  Vec3f p, n;
-  float pdf_area = 0;  // with respect to surface area
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
 };
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
-// Uniform point on a shape by area (the pdf is 1 / total area for every shape kind).
-SurfacePoint sample_area(const AreaLight &a, const ShapeRecord &s, float u0, float u1) {
-  SurfacePoint sp;
-  switch (s.type) {
-    case ShapeType::Sphere: {
-      const Vec3f d = sample_uniform_sphere(u0, u1);
-      sp.p = s.center + d * s.radius, sp.n = d;
-      break;
-    }
-    case ShapeType::Disk: {
-      const Vec2f d = sample_uniform_disk_concentric(u0, u1);
-      const Frame f = Frame::from_normal(s.normal);
-      sp.p = s.center + (f.s * d.x + f.t * d.y) * s.radius, sp.n = s.normal;
-      break;
-    }
-    default: {
-      float u0r = 0;
-      const int64_t t = a.triangles.sample(u0, nullptr, &u0r);
-      const MeshData &m = *s.mesh;
-      const Vec2f b = sample_uniform_triangle(u0r, u1);
-      const Vec3f &p0 = m.positions[m.indices[3 * t]], &p1 = m.positions[m.indices[3 * t + 1]],
-                  &p2 = m.positions[m.indices[3 * t + 2]];
-      sp.p = p0 * (1 - b.x - b.y) + p1 * b.x + p2 * b.y;
-      sp.n = oriented_triangle_normal(m, uint32_t(t), b.x, b.y);
-      break;
-    }
-  }
-  sp.pdf_area = s.area > 0 ? 1 / s.area : 0;
-  return sp;
+// An incident sample from infinitely far away along wi (towards the light).
+void set_infinite_incident(const LightScene &scene, const Vec3f &p, const Vec3f &wi, const Rgb &L, float pdf,
+                           uint32_t flags, nimbus_light_incident_t &out) {
+  wi.store(out.wi);
+  out.dist = kInfinity;
+  // A point beyond the scene's bounding sphere, for spawn_ray_to.
+  (p + wi * (2 * scene.radius + length(p - scene.center))).store(out.p);
+  L.store(out.L);
+  out.pdf = pdf;
+  out.flags = flags | NIMBUS_LIGHT_INFINITE;
 }
 
-// 1 - cos(theta_max) of the cone a sphere subtends from distance d, stable when the sphere is tiny.
-float sphere_cone_one_minus_cos(float radius, float dist) {
-  const float sin2 = sqr(radius / dist);
-  return sin2 / (1 + safe_sqrt(1 - sin2));
+// A photon arriving from direction `to_light` (unit, towards the light): starts on the disk of the
+// scene's bounding sphere that faces the light, and travels along -to_light.
+void set_infinite_emission(const LightScene &scene, const Vec3f &to_light, float u0, float u1, const Rgb &L,
+                           float pdf_dir, uint32_t flags, nimbus_light_emission_t &out) {
+  const Frame f = Frame::from_normal(to_light);
+  const Vec2f d = sample_uniform_disk_concentric(u0, u1);
+  const Vec3f org = scene.center + (to_light + f.s * d.x + f.t * d.y) * scene.radius;
+  org.store(out.org);
+  (-to_light).store(out.dir);
+  (-to_light).store(out.n);
+  L.store(out.Le);
+  out.pdf_pos = 1 / (kPi * sqr(scene.radius));
+  out.pdf_dir = pdf_dir;
+  out.flags = flags | NIMBUS_LIGHT_INFINITE;
 }
-
-bool emits_towards(const AreaLight &a, const Vec3f &n, const Vec3f &w) { return a.two_sided || dot(n, w) > 0; }
 
 }  // namespace
 
-void light_sample_incident(const Light &light, const GeometryScene &geo, const nimbus_interaction_t &ref,
+void light_sample_incident(const Light &light, const LightScene &scene, const nimbus_interaction_t &ref,
                            const float u[2], nimbus_light_incident_t &out) {
   std::memset(&out, 0, sizeof(out));
   const Vec3f p = Vec3f::load(ref.p);
-  if (const auto *pl = std::get_if<PointLight>(&light.kind)) {
-    const Vec3f d = pl->position - p;
-    const float dist2 = length_squared(d);
-    if (!(dist2 > 0)) return;
-    const float dist = std::sqrt(dist2);
-    (d / dist).store(out.wi);
-    out.dist = dist;
-    pl->position.store(out.p);
-    (pl->intensity / dist2).store(out.L);
-    out.pdf = 1;
-    out.flags = NIMBUS_LIGHT_DELTA_POSITION;
-    return;
-  }
-  const auto &a = std::get<AreaLight>(light.kind);
-  const ShapeRecord &s = geo.shapes()[a.shape];
-  out.flags = NIMBUS_LIGHT_AREA;
-  Vec3f lp, ln;
-  float pdf;
-  const float dc = length(s.center - p);
-  if (s.type == ShapeType::Sphere && dc > s.radius * 1.0001f) {
-    // Sample the cone of directions the sphere subtends (pbrt-v4 SphereShape::Sample(ctx)).
-    const float omc = sphere_cone_one_minus_cos(s.radius, dc);
-    const Frame f = Frame::from_normal((s.center - p) / dc);
-    const float cos_theta = 1 - u[0] * omc;
-    const float sin_theta = safe_sqrt(1 - cos_theta * cos_theta);
-    const float phi = 2 * kPi * u[1];
-    const Vec3f w = f.to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
-    // Nearest intersection of the ray p + t w with the sphere (tangent rays clamp to the tangent point).
-    const float b = dot(w, s.center - p);
-    const float t = b - safe_sqrt(sqr(s.radius) - (dc * dc - b * b));
-    lp = p + w * t;
-    ln = normalize(lp - s.center);
-    lp = s.center + ln * s.radius;
-    pdf = 1 / (2 * kPi * omc);
-  } else {
-    const SurfacePoint sp = sample_area(a, s, u[0], u[1]);
-    lp = sp.p, ln = sp.n;
-    const Vec3f d = lp - p;
-    const float dist2 = length_squared(d);
-    const float cos_l = std::abs(dot(ln, d)) / std::sqrt(dist2);
-    if (!(dist2 > 0) || !(cos_l > 0)) return;
-    pdf = sp.pdf_area * dist2 / cos_l;
-  }
-  const Vec3f d = lp - p;
-  const float dist = length(d);
-  if (!(dist > 0) || !std::isfinite(pdf)) return;
-  const Vec3f wi = d / dist;
-  wi.store(out.wi);
-  out.dist = dist;
-  lp.store(out.p);
-  ln.store(out.n);
-  out.pdf = pdf;
-  if (emits_towards(a, ln, -wi)) a.radiance.store(out.L);
+  std::visit(
+      Overloaded{
+          [&](const PointLight &l) {
+            const Vec3f d = l.position - p;
+            const float dist2 = length_squared(d);
+            if (!(dist2 > 0)) return;
+            const float dist = std::sqrt(dist2);
+            (d / dist).store(out.wi);
+            out.dist = dist;
+            l.position.store(out.p);
+            (l.intensity / dist2).store(out.L);
+            out.pdf = 1;
+            out.flags = NIMBUS_LIGHT_DELTA_POSITION;
+          },
+          [&](const SpotLight &l) {
+            const Vec3f d = l.position - p;
+            const float dist2 = length_squared(d);
+            if (!(dist2 > 0)) return;
+            const float dist = std::sqrt(dist2);
+            const Vec3f wi = d / dist;
+            wi.store(out.wi);
+            out.dist = dist;
+            l.position.store(out.p);
+            (l.intensity * (l.falloff(dot(-wi, l.frame.n)) / dist2)).store(out.L);
+            out.pdf = 1;
+            out.flags = NIMBUS_LIGHT_DELTA_POSITION;
+          },
+          [&](const AreaLight &l) { area_sample_incident(l, *scene.geometry, p, u, out); },
+          [&](const SunLight &l) {
+            if (l.is_delta()) {
+              set_infinite_incident(scene, p, l.to_sun, l.radiance, 1, NIMBUS_LIGHT_DELTA_DIRECTION, out);
+              return;
+            }
+            const Vec3f wi = l.frame.to_world(sample_uniform_cone(u[0], u[1], l.cos_half_angle));
+            set_infinite_incident(scene, p, wi, l.radiance, uniform_cone_pdf(l.cos_half_angle), 0, out);
+          },
+          [&](const EnvironmentLight &l) {
+            float pdf = 0;
+            const Vec3f wi = environment_sample(l, u[0], u[1], pdf);
+            if (!(pdf > 0)) return;
+            set_infinite_incident(scene, p, wi, l.lookup(wi), pdf, 0, out);
+          },
+      },
+      light.kind);
 }
 
-float light_pdf_incident(const Light &light, const GeometryScene &geo, const nimbus_interaction_t &ref,
+float light_pdf_incident(const Light &light, const LightScene &scene, const nimbus_interaction_t &ref,
                          const Vec3f &wi, const nimbus_interaction_t *on_light) {
-  const auto *a = std::get_if<AreaLight>(&light.kind);
-  if (!a || !on_light) return 0;
-  const ShapeRecord &s = geo.shapes()[a->shape];
-  const Vec3f p = Vec3f::load(ref.p);
-  const float dc = length(s.center - p);
-  if (s.type == ShapeType::Sphere && dc > s.radius * 1.0001f)
-    return 1 / (2 * kPi * sphere_cone_one_minus_cos(s.radius, dc));
-  const Vec3f lp = Vec3f::load(on_light->p), ln = Vec3f::load(on_light->ng);
-  const float dist2 = length_squared(lp - p);
-  const float cos_l = std::abs(dot(ln, wi));
-  if (!(cos_l > 0) || !(s.area > 0)) return 0;
-  return dist2 / (cos_l * s.area);
+  return std::visit(Overloaded{
+                        [&](const AreaLight &l) {
+                          return on_light ? area_pdf_incident(l, *scene.geometry, Vec3f::load(ref.p), wi, *on_light)
+                                          : 0.0f;
+                        },
+                        [&](const SunLight &l) {
+                          return !l.is_delta() && dot(wi, l.to_sun) >= l.cos_half_angle
+                                     ? uniform_cone_pdf(l.cos_half_angle)
+                                     : 0.0f;
+                        },
+                        [&](const EnvironmentLight &l) { return l.pdf(wi); },
+                        [](const auto &) { return 0.0f; },
+                    },
+                    light.kind);
 }
 
 Rgb light_eval_emitted(const Light &light, const nimbus_interaction_t &on_light, const Vec3f &wo) {
   const auto *a = std::get_if<AreaLight>(&light.kind);
-  if (!a || !emits_towards(*a, Vec3f::load(on_light.ng), wo)) return Rgb(0);
+  if (!a || !(a->two_sided || dot(Vec3f::load(on_light.ng), wo) > 0)) return Rgb(0);
   return a->radiance;
 }
 
-void light_sample_emission(const Light &light, const GeometryScene &geo, const float u[4],
-                           nimbus_light_emission_t &out) {
-  std::memset(&out, 0, sizeof(out));
-  if (const auto *pl = std::get_if<PointLight>(&light.kind)) {
-    pl->position.store(out.org);
-    sample_uniform_sphere(u[2], u[3]).store(out.dir);
-    pl->intensity.store(out.Le);
-    out.pdf_pos = 1;
-    out.pdf_dir = kUniformSpherePdf;
-    out.flags = NIMBUS_LIGHT_DELTA_POSITION;
-    return;
-  }
-  const auto &a = std::get<AreaLight>(light.kind);
-  const SurfacePoint sp = sample_area(a, geo.shapes()[a.shape], u[0], u[1]);
-  float u2 = u[2];
-  Vec3f n = sp.n;
-  float side_pmf = 1;
-  if (a.two_sided) {  // pick a side, reusing u[2]
-    side_pmf = 0.5f;
-    if (u2 < 0.5f) {
-      u2 *= 2;
-    } else {
-      u2 = (u2 - 0.5f) * 2, n = -n;
-    }
-  }
-  const Vec3f local = sample_cosine_hemisphere(u2, u[3]);
-  const Vec3f dir = Frame::from_normal(n).to_world(local);
-  sp.p.store(out.org);
-  dir.store(out.dir);
-  n.store(out.n);
-  a.radiance.store(out.Le);
-  out.pdf_pos = sp.pdf_area;
-  out.pdf_dir = cosine_hemisphere_pdf(local.z) * side_pmf;
-  out.flags = NIMBUS_LIGHT_AREA;
+Rgb light_eval_infinite(const Light &light, const Vec3f &dir) {
+  if (const auto *s = std::get_if<SunLight>(&light.kind))
+    return !s->is_delta() && dot(dir, s->to_sun) >= s->cos_half_angle ? s->radiance : Rgb(0);
+  if (const auto *e = std::get_if<EnvironmentLight>(&light.kind)) return e->lookup(dir);
+  return Rgb(0);
 }
 
-void light_fill_info(const Light &light, const GeometryScene &geo, nimbus_light_info_t &info) {
+void light_sample_emission(const Light &light, const LightScene &scene, const float u[4],
+                           nimbus_light_emission_t &out) {
+  std::memset(&out, 0, sizeof(out));
+  std::visit(Overloaded{
+                 [&](const PointLight &l) {
+                   l.position.store(out.org);
+                   sample_uniform_sphere(u[2], u[3]).store(out.dir);
+                   l.intensity.store(out.Le);
+                   out.pdf_pos = 1;
+                   out.pdf_dir = kUniformSpherePdf;
+                   out.flags = NIMBUS_LIGHT_DELTA_POSITION;
+                 },
+                 [&](const SpotLight &l) {
+                   const Vec3f local = sample_uniform_cone(u[2], u[3], l.cos_falloff_end);
+                   l.position.store(out.org);
+                   l.frame.to_world(local).store(out.dir);
+                   (l.intensity * l.falloff(local.z)).store(out.Le);
+                   out.pdf_pos = 1;
+                   out.pdf_dir = uniform_cone_pdf(l.cos_falloff_end);
+                   out.flags = NIMBUS_LIGHT_DELTA_POSITION;
+                 },
+                 [&](const AreaLight &l) { area_sample_emission(l, *scene.geometry, u, out); },
+                 [&](const SunLight &l) {
+                   if (l.is_delta()) {
+                     set_infinite_emission(scene, l.to_sun, u[0], u[1], l.radiance, 1, NIMBUS_LIGHT_DELTA_DIRECTION,
+                                           out);
+                     return;
+                   }
+                   const Vec3f w = l.frame.to_world(sample_uniform_cone(u[2], u[3], l.cos_half_angle));
+                   set_infinite_emission(scene, w, u[0], u[1], l.radiance, uniform_cone_pdf(l.cos_half_angle), 0,
+                                         out);
+                 },
+                 [&](const EnvironmentLight &l) {
+                   float pdf = 0;
+                   const Vec3f w = environment_sample(l, u[2], u[3], pdf);
+                   if (!(pdf > 0)) return;
+                   set_infinite_emission(scene, w, u[0], u[1], l.lookup(w), pdf, 0, out);
+                 },
+             },
+             light.kind);
+}
+
+void light_fill_info(const Light &light, const LightScene &scene, nimbus_light_info_t &info) {
   info.group = light.group;
   info.power = light.power;
-  if (const auto *pl = std::get_if<PointLight>(&light.kind)) {
-    info.flags = NIMBUS_LIGHT_DELTA_POSITION;
-    pl->position.store(info.bounds_min);
-    pl->position.store(info.bounds_max);
-    info.cos_theta_o = -1;  // all directions
-    info.cos_theta_e = 0;
-    return;
-  }
-  const auto &a = std::get<AreaLight>(light.kind);
-  const ShapeRecord &s = geo.shapes()[a.shape];
-  info.flags = NIMBUS_LIGHT_AREA;
-  Vec3f lo{kInfinity}, hi{-kInfinity};
-  if (s.type == ShapeType::Sphere || s.type == ShapeType::Disk) {
-    lo = s.center - Vec3f(s.radius), hi = s.center + Vec3f(s.radius);
-  } else {
-    for (const Vec3f &p : s.mesh->positions) lo = min(lo, p), hi = max(hi, p);
-  }
-  lo.store(info.bounds_min);
-  hi.store(info.bounds_max);
-  if (s.type == ShapeType::Disk && !a.two_sided) {
-    s.normal.store(info.axis);
-    info.cos_theta_o = 1;
-  } else {
-    info.cos_theta_o = -1;
-  }
-  info.cos_theta_e = 0;  // cosine emission: up to 90 degrees from each normal
+  const auto point_bounds = [&](const Vec3f &p) {
+    p.store(info.bounds_min);
+    p.store(info.bounds_max);
+  };
+  const auto scene_bounds = [&] {
+    (scene.center - Vec3f(scene.radius)).store(info.bounds_min);
+    (scene.center + Vec3f(scene.radius)).store(info.bounds_max);
+  };
+  std::visit(Overloaded{
+                 [&](const PointLight &l) {
+                   info.flags = NIMBUS_LIGHT_DELTA_POSITION;
+                   point_bounds(l.position);
+                   info.cos_theta_o = -1;
+                   info.cos_theta_e = 0;
+                 },
+                 [&](const SpotLight &l) {
+                   info.flags = NIMBUS_LIGHT_DELTA_POSITION;
+                   point_bounds(l.position);
+                   l.frame.n.store(info.axis);
+                   info.cos_theta_o = 1;
+                   info.cos_theta_e = l.cos_falloff_end;
+                 },
+                 [&](const AreaLight &l) { area_fill_info(l, *scene.geometry, info); },
+                 [&](const SunLight &l) {
+                   info.flags = NIMBUS_LIGHT_INFINITE | (l.is_delta() ? NIMBUS_LIGHT_DELTA_DIRECTION : 0u);
+                   scene_bounds();
+                   (-l.to_sun).store(info.axis);
+                   info.cos_theta_o = 1;
+                   info.cos_theta_e = l.cos_half_angle;
+                 },
+                 [&](const EnvironmentLight &) {
+                   info.flags = NIMBUS_LIGHT_INFINITE;
+                   scene_bounds();
+                   info.cos_theta_o = -1;
+                   info.cos_theta_e = 0;
+                 },
+             },
+             light.kind);
 }
 
 }  // namespace nimbus

@@ -1,44 +1,91 @@
-// A light of the scene. Point lights are delta positions; area lights are emissive shapes (any shape)
-// found both by sampling and by rays hitting them.
+// The lights of a scene as value types behind one variant: point, spot, area (any emissive shape), sun
+// (a distant disk, or a delta direction) and environment (uniform colour, lat-long map, or analytic
+// sky baked into a map). Every routine follows the conventions of sdk/include/nimbus/lights.h.
 #pragma once
 
 #include <nimbus/lights.h>
 
-#include <string>
 #include <variant>
 
 #include "core/alias_table.hpp"
+#include "core/distribution.hpp"
 #include "core/math.hpp"
 #include "geometry/geometry_scene.hpp"
 
 namespace nimbus {
+
+// What infinite lights need to know of the scene: the bounding sphere their photons start from.
+struct LightScene {
+  const GeometryScene *geometry = nullptr;
+  Vec3f center;
+  float radius = 1;
+};
 
 struct PointLight {
   Vec3f position;
   Rgb intensity;  // W/sr
 };
 
+struct SpotLight {
+  Vec3f position;
+  Frame frame;          // n = the axis
+  Rgb intensity;        // W/sr on the axis
+  float cos_falloff_start = 1, cos_falloff_end = 0;  // full intensity inside start, zero outside end
+  float falloff(float cos_theta) const;
+};
+
 struct AreaLight {
-  uint32_t shape = 0;  // geometry index
-  Rgb radiance;        // W/(m^2 sr)
+  uint32_t shape = 0;
+  Rgb radiance;
   bool two_sided = false;
   AliasTable triangles;  // by area, for mesh shapes
 };
 
-struct Light {
-  std::variant<PointLight, AreaLight> kind;
-  uint32_t group = 0;
-  float power = 0;  // luminance of the emitted flux, W
+struct SunLight {
+  Vec3f to_sun;           // unit, towards the sun
+  Frame frame;            // n = to_sun
+  Rgb radiance;           // inside the disk (cone); for a delta sun: the irradiance
+  float cos_half_angle = 1;  // 1 = delta direction
+  bool is_delta() const { return cos_half_angle >= 1; }
 };
 
-// Every routine takes the geometry for the shape data of area lights.
-void light_sample_incident(const Light &light, const GeometryScene &geo, const nimbus_interaction_t &ref,
+struct EnvironmentLight {
+  Rgb color;                     // uniform part (used when the map is empty)
+  std::vector<Rgb> map;          // lat-long, row-major, width x height, v = 0 at +z
+  uint32_t width = 0, height = 0;
+  float rotate_radians = 0;      // about +z
+  Distribution2D distribution;   // luminance x sin(theta), for sampling
+  Rgb lookup(const Vec3f &dir) const;
+  float pdf(const Vec3f &dir) const;
+};
+
+struct Light {
+  std::variant<PointLight, SpotLight, AreaLight, SunLight, EnvironmentLight> kind;
+  uint32_t group = 0;
+  float power = 0;  // luminance of the emitted flux (infinite lights: through the scene's disk)
+  bool infinite() const {
+    return std::holds_alternative<SunLight>(kind) || std::holds_alternative<EnvironmentLight>(kind);
+  }
+};
+
+void light_sample_incident(const Light &light, const LightScene &scene, const nimbus_interaction_t &ref,
                            const float u[2], nimbus_light_incident_t &out);
-float light_pdf_incident(const Light &light, const GeometryScene &geo, const nimbus_interaction_t &ref,
+float light_pdf_incident(const Light &light, const LightScene &scene, const nimbus_interaction_t &ref,
                          const Vec3f &wi, const nimbus_interaction_t *on_light);
 Rgb light_eval_emitted(const Light &light, const nimbus_interaction_t &on_light, const Vec3f &wo);
-void light_sample_emission(const Light &light, const GeometryScene &geo, const float u[4],
+// Radiance an infinite light sends back along an escaped ray with direction `dir`.
+Rgb light_eval_infinite(const Light &light, const Vec3f &dir);
+void light_sample_emission(const Light &light, const LightScene &scene, const float u[4],
                            nimbus_light_emission_t &out);
-void light_fill_info(const Light &light, const GeometryScene &geo, nimbus_light_info_t &info);
+void light_fill_info(const Light &light, const LightScene &scene, nimbus_light_info_t &info);
+
+// Per-kind helpers (one file each).
+void area_sample_incident(const AreaLight &a, const GeometryScene &geo, const Vec3f &p, const float u[2],
+                          nimbus_light_incident_t &out);
+float area_pdf_incident(const AreaLight &a, const GeometryScene &geo, const Vec3f &p, const Vec3f &wi,
+                        const nimbus_interaction_t &on_light);
+void area_sample_emission(const AreaLight &a, const GeometryScene &geo, const float u[4],
+                          nimbus_light_emission_t &out);
+void area_fill_info(const AreaLight &a, const GeometryScene &geo, nimbus_light_info_t &info);
 
 }  // namespace nimbus

@@ -2,10 +2,11 @@
 
 #include <map>
 
+#include "lights/sky_model.hpp"
+
 namespace nimbus {
 namespace {
 
-// Lights without a group get their own, named after their kind and index ("light3").
 uint32_t group_index(const std::string &group, uint32_t light_index, std::vector<std::string> &names,
                      std::map<std::string, uint32_t> &by_name) {
   const std::string name = group.empty() ? "light" + std::to_string(light_index) : group;
@@ -20,17 +21,81 @@ float triangle_area(const MeshData &m, size_t t) {
   return 0.5f * length(cross(b - a, c - a));
 }
 
+// Integral of the map's luminance over the sphere (for the environment's power), and the sampling
+// distribution luminance x sin(theta).
+void build_environment_distribution(EnvironmentLight &env, double &integral_luminance) {
+  integral_luminance = 0;
+  if (env.map.empty()) {
+    integral_luminance = 4 * kPi * luminance(env.color);
+    return;
+  }
+  std::vector<float> weights(env.map.size());
+  const double texel_solid = (2 * kPi / env.width) * (kPi / env.height);
+  for (uint32_t y = 0; y < env.height; ++y) {
+    const float sin_theta = std::sin((float(y) + 0.5f) / float(env.height) * kPi);
+    for (uint32_t x = 0; x < env.width; ++x) {
+      const float lum = std::max(0.0f, luminance(env.map[size_t(y) * env.width + x]));
+      weights[size_t(y) * env.width + x] = lum * sin_theta;
+      integral_luminance += double(lum) * sin_theta * texel_solid;
+    }
+  }
+  env.distribution = Distribution2D(weights, env.width, env.height);
+}
+
 }  // namespace
 
 Expected<LightSet> LightSet::build(const SceneDesc &desc, GeometryScene &geo) {
   LightSet set;
+  set.scene_ = {&geo, geo.sphere_center(), std::max(geo.sphere_radius(), 1e-6f)};
+  const float disk_area = kPi * sqr(set.scene_.radius);
   std::map<std::string, uint32_t> by_name;
+  const auto add = [&](Light l, const std::string &group) {
+    l.group = group_index(group, set.count(), set.group_names_, by_name);
+    if (l.infinite()) set.infinite_.push_back(set.count());
+    set.lights_.push_back(std::move(l));
+  };
+  const LightDesc *sun_desc = nullptr;
   for (const LightDesc &ld : desc.lights) {
     Light l;
-    l.kind = PointLight{ld.position, ld.intensity};
-    l.power = 4 * kPi * luminance(ld.intensity);
-    l.group = group_index(ld.group, set.count(), set.group_names_, by_name);
-    set.lights_.push_back(std::move(l));
+    switch (ld.type) {
+      case LightType::Point:
+        l.kind = PointLight{ld.position, ld.intensity};
+        l.power = 4 * kPi * luminance(ld.intensity);
+        break;
+      case LightType::Spot: {
+        SpotLight s;
+        s.position = ld.position;
+        s.frame = Frame::from_normal(normalize(ld.direction));
+        s.intensity = ld.intensity;
+        const float cone = radians(clamp(ld.cone_degrees, 0.01f, 180.0f));
+        const float soft = radians(clamp(ld.softness_degrees, 0.0f, ld.cone_degrees));
+        s.cos_falloff_end = std::cos(cone);
+        s.cos_falloff_start = std::cos(cone - soft);
+        l.power = luminance(ld.intensity) * 2 * kPi *
+                  ((1 - s.cos_falloff_start) + (s.cos_falloff_start - s.cos_falloff_end) / 2);
+        l.kind = s;
+        break;
+      }
+      case LightType::Sun: {
+        SunLight s;
+        s.to_sun = -normalize(ld.direction);
+        s.frame = Frame::from_normal(s.to_sun);
+        const float half = radians(ld.angular_diameter_degrees) / 2;
+        if (half > 0) {
+          s.cos_half_angle = std::cos(half);
+          // Radiance of a uniform disk that gives the requested irradiance at normal incidence:
+          // E = L * pi * sin^2(half) (the projected solid angle of the cone).
+          s.radiance = ld.irradiance / (kPi * sqr(std::sin(half)));
+        } else {
+          s.radiance = ld.irradiance;
+        }
+        l.power = luminance(ld.irradiance) * disk_area;
+        l.kind = s;
+        sun_desc = &ld;
+        break;
+      }
+    }
+    add(std::move(l), ld.group);
   }
   for (uint32_t s = 0; s < desc.shapes.size(); ++s) {
     const ShapeDesc &sd = desc.shapes[s];
@@ -43,15 +108,39 @@ Expected<LightSet> LightSet::build(const SceneDesc &desc, GeometryScene &geo) {
       std::vector<double> areas(sd.mesh.indices.size() / 3);
       for (size_t t = 0; t < areas.size(); ++t) areas[t] = triangle_area(sd.mesh, t);
       a.triangles = AliasTable(areas);
-      if (a.triangles.empty()) continue;  // degenerate mesh: emits nothing, cannot be sampled
+      if (a.triangles.empty()) continue;  // degenerate mesh: emits nothing and cannot be sampled
     }
     Light l;
-    const float area = geo.shapes()[s].area;
-    l.power = kPi * area * luminance(sd.emission) * (sd.two_sided ? 2 : 1);
+    l.power = kPi * geo.shapes()[s].area * luminance(sd.emission) * (sd.two_sided ? 2 : 1);
     l.kind = std::move(a);
-    l.group = group_index(sd.group, set.count(), set.group_names_, by_name);
     geo.shapes()[s].light_id = set.count();
-    set.lights_.push_back(std::move(l));
+    add(std::move(l), sd.group);
+  }
+  const EnvironmentDesc &ed = desc.environment;
+  if (ed.type != EnvironmentType::None) {
+    EnvironmentLight env;
+    if (ed.type == EnvironmentType::Map) {
+      auto loaded = load_environment_map(ed.map);
+      if (!loaded) return loaded.error();
+      env = std::move(loaded.value());
+    } else if (ed.type == EnvironmentType::Sky) {
+      const Vec3f to_sun = sun_desc ? -normalize(sun_desc->direction) : normalize(ed.sun_direction);
+      env.width = 512, env.height = 256;
+      env.map = bake_sky(to_sun, ed.turbidity, env.width, env.height);
+    } else {
+      env.color = ed.color;
+    }
+    for (Rgb &c : env.map) c *= ed.scale;
+    env.color *= ed.scale;
+    env.rotate_radians = radians(ed.rotate_degrees);
+    double integral = 0;
+    build_environment_distribution(env, integral);
+    if (integral > 0) {
+      Light l;
+      l.power = float(integral) * disk_area;
+      l.kind = std::move(env);
+      add(std::move(l), ed.group.empty() ? "environment" : ed.group);
+    }
   }
   return set;
 }

@@ -83,12 +83,34 @@ struct ShapeDesc {
   SourceLocation where;
 };
 
-enum class LightType { Point };
+enum class LightType { Point, Spot, Sun };
 
 struct LightDesc {
   LightType type = LightType::Point;
   Vec3f position{0, 0, 0};
-  Rgb intensity{1, 1, 1};  // W/sr
+  Rgb intensity{1, 1, 1};  // point and spot: W/sr (from `intensity:`, or `power:` in W converted)
+  // Spot: the axis it points along; sun: the direction its light travels (from the sun to the scene).
+  Vec3f direction{0, 0, -1};
+  float cone_degrees = 30;      // spot: half angle of the cone
+  float softness_degrees = 5;   // spot: width of the smooth fall-off inside the cone's edge
+  Rgb irradiance{1, 1, 1};      // sun: W/m^2 on a surface facing it
+  float angular_diameter_degrees = 0.53f;  // sun: 0 = a delta direction
+  std::string group;
+  SourceLocation where;
+};
+
+enum class EnvironmentType { None, Color, Map, Sky };
+
+// The environment: radiance arriving from infinitely far away along directions no geometry blocks.
+struct EnvironmentDesc {
+  EnvironmentType type = EnvironmentType::None;
+  Rgb color{0, 0, 0};      // uniform: radiance W/(m^2 sr)
+  std::string map;         // lat-long image path (absolute after parsing)
+  float scale = 1;         // multiplies the radiance of map, color and sky
+  float rotate_degrees = 0;  // rotation about the up (+z) axis
+  float turbidity = 3;     // sky: Preetham turbidity in [1.7, 10]
+  // Sky: direction towards the sun (unit); taken from the scene's sun light when it has one.
+  Vec3f sun_direction{0, 0, 1};
   std::string group;
   SourceLocation where;
 };
@@ -100,6 +122,7 @@ struct SceneDesc {
   std::vector<MaterialDesc> materials;
   std::vector<ShapeDesc> shapes;
   std::vector<LightDesc> lights;
+  EnvironmentDesc environment;
 };
 
 }  // namespace nimbus

@@ -1,0 +1,37 @@
+// Reading lat-long environment images through OpenImageIO (EXR, HDR, PNG, JPEG...).
+#include <OpenImageIO/imageio.h>
+
+#include "lights/light_set.hpp"
+
+namespace nimbus {
+
+Expected<EnvironmentLight> load_environment_map(const std::string &path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) {
+    std::string reason = OIIO::geterror();
+    if (reason.empty()) reason = "cannot open";
+    return Error{path + ": cannot read environment map: " + reason};
+  }
+  const OIIO::ImageSpec &spec = in->spec();
+  if (spec.width < 2 || spec.height < 1 || spec.nchannels < 1)
+    return Error{path + ": environment map has no pixels"};
+  std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    return Error{path + ": cannot read environment map: " + in->geterror()};
+  EnvironmentLight env;
+  env.width = uint32_t(spec.width);
+  env.height = uint32_t(spec.height);
+  env.map.resize(size_t(env.width) * env.height);
+  const int c = spec.nchannels;
+  for (size_t i = 0; i < env.map.size(); ++i) {
+    const float *p = &pixels[i * c];
+    Rgb v = c >= 3 ? Rgb{p[0], p[1], p[2]} : Rgb(p[0]);
+    // Negative, NaN or infinite texels would poison the sampling distribution: clamp them to zero.
+    for (int k = 0; k < 3; ++k)
+      if (!(std::isfinite(v[k]) && v[k] > 0)) v[k] = 0;
+    env.map[i] = v;
+  }
+  return env;
+}
+
+}  // namespace nimbus
