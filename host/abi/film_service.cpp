@@ -1,4 +1,4 @@
-// nimbus.host.film@1.
+// nimbus.host.film@1 and nimbus.ext.lightmix@1.
 #include "abi/host_services.hpp"
 #include "abi/service_tables.hpp"
 
@@ -24,7 +24,29 @@ void splat(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx, nimbus_ele
   context_of(host).film->splat(ctx->worker_index, el, fx, fy, value);
 }
 
+int32_t lightmix_is_active(const nimbus_host_t *host) { return context_of(host).lightmix_elements.empty() ? 0 : 1; }
+
+uint32_t lightmix_group_count(const nimbus_host_t *host) {
+  return uint32_t(context_of(host).lights.group_names().size());
+}
+
+void lightmix_accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *, uint32_t group, uint32_t x,
+                         uint32_t y, const float value[3]) {
+  const RenderContext &ctx = context_of(host);
+  if (group < ctx.lightmix_elements.size()) ctx.film->accumulate(ctx.lightmix_elements[group], x, y, value);
+}
+
+void lightmix_splat(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, uint32_t group, float fx, float fy,
+                    const float value[3]) {
+  const RenderContext &ctx = context_of(host);
+  if (group < ctx.lightmix_elements.size())
+    ctx.film->splat(tc->worker_index, ctx.lightmix_elements[group], fx, fy, value);
+}
+
 }  // namespace
+
+const nimbus_ext_lightmix_v1_t kLightMixV1 = {sizeof(nimbus_ext_lightmix_v1_t), lightmix_is_active,
+                                              lightmix_group_count, lightmix_accumulate, lightmix_splat};
 
 const nimbus_host_film_v1_t kFilmV1 = {sizeof(nimbus_host_film_v1_t), register_element, is_active, accumulate,
                                        splat};

@@ -42,6 +42,7 @@ const void *HostServices::find_service(const char *id, uint32_t rev) {
   if (s == NIMBUS_SERVICE_BSDF) return &kBsdfV1;
   if (s == NIMBUS_SERVICE_LIGHTS) return &kLightsV1;
   if (s == NIMBUS_SERVICE_FILM) return &kFilmV1;
+  if (s == NIMBUS_EXT_LIGHTMIX) return &kLightMixV1;
   if (s == NIMBUS_SERVICE_RNG) return &kRngV1;
   if (s == NIMBUS_SERVICE_PROGRESS) return &kProgressV1;
   if (s == NIMBUS_SERVICE_TASKS) return &kTasksV1;

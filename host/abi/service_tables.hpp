@@ -10,6 +10,7 @@ extern const nimbus_host_camera_v1_t kCameraV1;
 extern const nimbus_host_bsdf_v1_t kBsdfV1;
 extern const nimbus_host_lights_v1_t kLightsV1;
 extern const nimbus_host_film_v1_t kFilmV1;
+extern const nimbus_ext_lightmix_v1_t kLightMixV1;
 extern const nimbus_host_rng_v1_t kRngV1;
 extern const nimbus_host_progress_v1_t kProgressV1;
 extern const nimbus_host_tasks_v1_t kTasksV1;

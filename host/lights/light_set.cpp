@@ -7,13 +7,9 @@
 namespace nimbus {
 namespace {
 
-uint32_t group_index(const std::string &group, uint32_t light_index, std::vector<std::string> &names,
-                     std::map<std::string, uint32_t> &by_name) {
-  const std::string name = group.empty() ? "light" + std::to_string(light_index) : group;
-  auto [it, inserted] = by_name.emplace(name, uint32_t(names.size()));
-  if (inserted) names.push_back(name);
-  return it->second;
-}
+// LightMix: a light without a `group:` is its own group ("light<index>") while the scene has at most
+// this many lights; beyond that ungrouped lights share the group "default" (no one mixes 10,000 layers).
+constexpr uint32_t kMaxImplicitGroups = 16;
 
 float triangle_area(const MeshData &m, size_t t) {
   const Vec3f &a = m.positions[m.indices[3 * t]], &b = m.positions[m.indices[3 * t + 1]],
@@ -48,11 +44,11 @@ Expected<LightSet> LightSet::build(const SceneDesc &desc, GeometryScene &geo) {
   LightSet set;
   set.scene_ = {&geo, geo.sphere_center(), std::max(geo.sphere_radius(), 1e-6f)};
   const float disk_area = kPi * sqr(set.scene_.radius);
-  std::map<std::string, uint32_t> by_name;
+  std::vector<std::string> groups;  // as written, per light
   const auto add = [&](Light l, const std::string &group) {
-    l.group = group_index(group, set.count(), set.group_names_, by_name);
     if (l.infinite()) set.infinite_.push_back(set.count());
     set.lights_.push_back(std::move(l));
+    groups.push_back(group);
   };
   const LightDesc *sun_desc = nullptr;
   for (const LightDesc &ld : desc.lights) {
@@ -141,6 +137,15 @@ Expected<LightSet> LightSet::build(const SceneDesc &desc, GeometryScene &geo) {
       l.kind = std::move(env);
       add(std::move(l), ed.group.empty() ? "environment" : ed.group);
     }
+  }
+  std::map<std::string, uint32_t> by_name;
+  for (uint32_t i = 0; i < set.count(); ++i) {
+    const std::string name = !groups[i].empty()                  ? groups[i]
+                             : set.count() <= kMaxImplicitGroups ? "light" + std::to_string(i)
+                                                                 : "default";
+    auto [it, inserted] = by_name.emplace(name, uint32_t(set.group_names_.size()));
+    if (inserted) set.group_names_.push_back(name);
+    set.lights_[i].group = it->second;
   }
   return set;
 }

@@ -33,6 +33,8 @@ struct RenderContext {
   Camera camera;
   std::unique_ptr<Film> film;
   uint64_t seed = 1;
+  // Film element of each LightMix group (empty when LightMix was not requested).
+  std::vector<int32_t> lightmix_elements;
 
   std::unique_ptr<tbb::task_arena> arena;
   uint32_t worker_count = 1;

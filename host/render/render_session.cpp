@@ -1,5 +1,7 @@
 #include "render/render_session.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -40,6 +42,27 @@ Expected<const Table *> interface_of(const nimbus_plugin_t *plugin, const char *
     return Error{std::string("plugin '") + plugin->desc->id + "': " + iface + " table is too small (" +
                  std::to_string(t->struct_size) + " bytes)"};
   return t;
+}
+
+bool has_feature(const nimbus_descriptor_t *d, const char *feature) {
+  for (const char *const *f = d->features; f && *f; ++f)
+    if (std::string_view(*f) == feature) return true;
+  return false;
+}
+
+// Film element names of the LightMix groups: "lightmix." + the group name in [a-z0-9_], unique.
+std::vector<std::string> lightmix_layer_names(const std::vector<std::string> &groups) {
+  std::vector<std::string> names;
+  for (const std::string &g : groups) {
+    std::string n;
+    for (char c : g) n += (std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(c)) : '_');
+    if (n.empty()) n = "group";
+    std::string unique = "lightmix." + n;
+    for (int k = 2; std::find(names.begin(), names.end(), unique) != names.end(); ++k)
+      unique = "lightmix." + n + "_" + std::to_string(k);
+    names.push_back(unique);
+  }
+  return names;
 }
 
 std::string png_path_for(const std::string &exr) {
@@ -126,8 +149,25 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
     return Error{"integrator '" + integrator_id + "' failed to prepare: " + status_text(s)};
 
   Film &film = *ctx.film;
-  for (const std::string &e : desc->render.elements) film.request(e);
-  for (const std::string &e : options.elements) film.request(e);
+  bool lightmix = false;
+  for (const auto *list : {&desc->render.elements, &options.elements})
+    for (const std::string &e : *list) {
+      if (e == "lightmix")
+        lightmix = true;
+      else
+        film.request(e);
+    }
+  if (lightmix && !has_feature(integrator.plugin->desc, "lightmix"))
+    return Error{"integrator '" + integrator_id + "' does not produce LightMix layers (no \"lightmix\" feature)"};
+  if (lightmix) {
+    // One layer per light group, "lightmix.<group>"; the integrator's contributions per light sum to beauty.
+    for (const std::string &g : lightmix_layer_names(ctx.lights.group_names())) {
+      const int32_t id = film.register_element(g, 3, NIMBUS_ELEMENT_SPLAT);
+      if (id < 0) return Error{"cannot create LightMix layer '" + g + "'"};
+      film.request(g);
+      ctx.lightmix_elements.push_back(id);
+    }
+  }
   if (Status s = film.allocate(); !s) return s.error();
   film.set_worker_count(ctx.worker_count);
 
@@ -218,20 +258,20 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   result.exr_path = options.output_exr;
   result.png_path = png_path_for(options.output_exr);
   std::vector<std::pair<std::string, std::string>> smeta = {
-      {"nimbus:version", NIMBUS_VERSION_STRING},
-      {"nimbus:integrator", integrator_id},
-      {"nimbus:light_sampler", sampler.plugin->desc->id},
-      {"nimbus:scene", desc->path},
-      {"nimbus:stopped_by", failure != NIMBUS_OK ? "error" : was_cancelled ? "cancel" : (iterations && done >= iterations) ? "iterations" : "time"}};
-  std::vector<std::pair<std::string, double>> nmeta = {{"nimbus:iterations", double(done)},
-                                                       {"nimbus:seconds", seconds},
-                                                       {"nimbus:seed", double(desc->render.seed)},
-                                                       {"nimbus:threads", double(ctx.worker_count)},
-                                                       {"nimbus:nonfinite_samples", double(film.nonfinite_count())},
-                                                       {"nimbus:rays", double(result.rays)}};
+      {"version", NIMBUS_VERSION_STRING},
+      {"integrator", integrator_id},
+      {"light_sampler", sampler.plugin->desc->id},
+      {"scene", desc->path},
+      {"stopped_by", failure != NIMBUS_OK ? "error" : was_cancelled ? "cancel" : (iterations && done >= iterations) ? "iterations" : "time"}};
+  std::vector<std::pair<std::string, double>> nmeta = {{"iterations", double(done)},
+                                                       {"seconds", seconds},
+                                                       {"seed", double(desc->render.seed)},
+                                                       {"threads", double(ctx.worker_count)},
+                                                       {"nonfinite_samples", double(film.nonfinite_count())},
+                                                       {"rays", double(result.rays)}};
   {
     std::lock_guard lock(ctx.stats_mutex);
-    for (const auto &[k, v] : ctx.stats) nmeta.push_back({"nimbus:stat:" + k, v});
+    for (const auto &[k, v] : ctx.stats) nmeta.push_back({"stat:" + k, v});
   }
   if (Status s = film.write_exr(result.exr_path, smeta, nmeta); !s) return s.error();
   const std::string ocio = options.ocio_config.empty() ? default_ocio_config_path() : options.ocio_config;
