@@ -1,0 +1,126 @@
+// The film: a registry of render elements, their per-pixel accumulation, and the image writers.
+//
+// Elements are declared, not assumed: integrators register what they can produce, the scene or the CLI
+// requests what it wants, and allocate() gives buffers only to elements that are both. Beauty (id 0,
+// RGB) is always registered and active. Sums are kept in double so that millions of samples per pixel
+// still average to the last float bit; the resolved value of a pixel is (accumulated + splatted) / N,
+// where N is the number of completed iterations.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/expected.hpp"
+
+namespace nimbus {
+
+class Film {
+ public:
+  static constexpr int32_t kBeauty = 0;
+  static constexpr int32_t kInvalid = -1;
+  static constexpr uint32_t kAverage = 0;  // flags, as NIMBUS_ELEMENT_AVERAGE / _SPLAT in sdk film.h
+  static constexpr uint32_t kSplat = 1;
+
+  Film(uint32_t width, uint32_t height);
+  Film(const Film &) = delete;
+  Film &operator=(const Film &) = delete;
+
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+
+  // ---- setup: main thread, not rendering ----------------------------------------------------------
+  // `name` matches [a-z0-9_.]+ (dots separate segments, as in "lightmix.key"); channels 1 or 3. Returns
+  // the new id, the existing id when `name` is already registered with the same channel count (flags
+  // are merged), or kInvalid.
+  int32_t register_element(std::string_view name, uint32_t channels, uint32_t flags);
+  // The scene or CLI wants element `name` in the output. Checked by allocate(), which knows the registry.
+  void request(std::string_view name);
+  // Gives buffers to every element that is registered and requested; may be called again after more
+  // requests. A requested name nobody registered is an error and allocates nothing.
+  Status allocate();
+  // Splat buffers are per worker so render threads never share a cache line; call before rendering.
+  // Pending (unmerged) splats are merged first so none are lost.
+  void set_worker_count(uint32_t workers);
+
+  // ---- queries: any thread ------------------------------------------------------------------------
+  bool is_active(int32_t id) const {
+    return id >= 0 && static_cast<size_t>(id) < elements_.size() && elements_[id].active;
+  }
+  const std::string &element_name(int32_t id) const { return elements_.at(id).name; }
+  uint32_t element_channels(int32_t id) const { return elements_.at(id).channels; }
+  std::vector<int32_t> active_elements() const;
+  // Sum buffers plus per-worker splat buffers, in bytes: lets tests prove "no request, no buffer".
+  size_t allocated_bytes() const;
+  uint64_t nonfinite_count() const { return nonfinite_.load(std::memory_order_relaxed); }
+
+  // ---- render threads -----------------------------------------------------------------------------
+  // Adds `v` (element_channels floats) to pixel (x, y). Callers own disjoint pixels, so there is no
+  // synchronisation. A sample with any non-finite channel is dropped whole and counted, so a single
+  // NaN can never poison a pixel for the rest of the render. Inactive elements ignore the call.
+  void accumulate(int32_t el, uint32_t x, uint32_t y, const float *v);
+  // Adds `v` at raster position (fx, fy), any pixel, into worker `worker`'s private buffer (allocated on
+  // first use). Only elements registered with kSplat take splats; positions off the film are dropped.
+  void splat(uint32_t worker, int32_t el, float fx, float fy, const float *v);
+
+  // ---- main thread, between iterations ------------------------------------------------------------
+  // Folds every worker's splats into the sums. Per pixel, the workers are summed in index order into a
+  // double before the single addition to the running sum, so how splats were distributed over workers
+  // does not change the result (float inputs summed in double are exact unless their magnitudes span
+  // more than ~2^29).
+  void merge_splats();
+  void end_iteration() { ++iterations_; }
+  uint64_t iterations() const { return iterations_; }
+  void set_iterations(uint64_t n) { iterations_ = n; }
+
+  // Channel-interleaved image of element `el` (width * height * channels floats), sums / N; zeros
+  // before the first iteration, empty for an inactive element.
+  std::vector<float> resolve(int32_t el) const;
+
+  // ---- output (main thread; both write `<path>.tmp-<pid>` and rename, so `path` is never truncated) --
+  // One multi-layer float EXR, zip-compressed: beauty as R, G, B; element e as e.R, e.G, e.B or e.Y.
+  // Strings become "nimbus:<key>" string attributes; numbers become "nimbus:<key>" int attributes when
+  // integral and within int32, double attributes otherwise (exact round trip either way).
+  Status write_exr(const std::string &path,
+                   const std::vector<std::pair<std::string, std::string>> &string_meta,
+                   const std::vector<std::pair<std::string, double>> &numeric_meta) const;
+  // Beauty through the OCIO config's default display/view from its scene_linear role, as 8-bit RGB PNG.
+  Status write_png(const std::string &path, const std::string &ocio_config_path) const;
+
+ private:
+  struct alignas(64) WorkerSplats {  // one cache line per worker: the dirty flag is written hot
+    std::vector<double> sum;         // empty until the worker's first splat into this element
+    bool dirty = false;
+  };
+  struct Element {
+    Element(std::string_view name_, uint32_t channels_, uint32_t flags_)
+        : name(name_), channels(channels_), flags(flags_) {}
+    std::string name;
+    uint32_t channels;
+    uint32_t flags;
+    bool active = false;
+    std::vector<double> sum;  // width * height * channels once active
+    std::vector<WorkerSplats> workers;
+  };
+
+  size_t pixel_count() const { return size_t(width_) * height_; }
+  void activate(Element &e);
+
+  uint32_t width_, height_;
+  uint32_t worker_count_ = 1;
+  uint64_t iterations_ = 0;
+  std::vector<Element> elements_;
+  std::vector<std::string> requested_;
+  std::atomic<uint64_t> nonfinite_{0};
+};
+
+// The OCIO config used for PNG output, in order: $NIMBUS_OCIO_CONFIG if set; the install or build
+// layout `<dir of the executable>/../share/nimbus/ocio/config.ocio` if it exists; the source tree's
+// host/film/ocio/config.ocio.
+std::string default_ocio_config_path();
+
+}  // namespace nimbus

@@ -1,0 +1,32 @@
+// Film::write_png: the beauty as a display-referred 8-bit preview.
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "film/atomic_file.hpp"
+#include "film/display_transform.hpp"
+#include "film/film.hpp"
+#include "film/image_write.hpp"
+
+namespace nimbus {
+
+Status Film::write_png(const std::string &path, const std::string &ocio_config_path) const {
+  std::vector<float> rgb = resolve(kBeauty);
+  // Fail before touching the destination: a bad config must not cost the user an existing preview.
+  if (Status shown = apply_display_transform(ocio_config_path, rgb, width_, height_); !shown) return shown;
+
+  std::vector<uint8_t> bytes(rgb.size());
+  for (size_t i = 0; i < rgb.size(); ++i) {
+    // Display values above 1 are out of gamut for an 8-bit sRGB file; clip, and round to nearest.
+    const float v = std::isnan(rgb[i]) ? 0.0f : std::clamp(rgb[i], 0.0f, 1.0f);
+    bytes[i] = static_cast<uint8_t>(std::lround(v * 255.0f));
+  }
+  OIIO::ImageSpec spec(static_cast<int>(width_), static_cast<int>(height_), 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("Software", "Nimbus " NIMBUS_VERSION_STRING);
+  return write_atomically(
+      path, [&](const std::string &tmp) { return write_oiio_image("png", tmp, spec, bytes.data()); });
+}
+
+}  // namespace nimbus
