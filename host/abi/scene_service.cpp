@@ -74,12 +74,20 @@ float resolution(const nimbus_host_t *host, uint32_t *width, uint32_t *height) {
   return c.pixel_angle();
 }
 
+float connect(const nimbus_host_t *host, const float p[3], const float lens_u[2], float raster[2],
+              float lens_point[3]) {
+  Vec3f lp;
+  const float w = context_of(host).camera.connect(Vec3f::load(p), lens_u, raster, lp);
+  lp.store(lens_point);
+  return w;
+}
+
 }  // namespace
 
 const nimbus_host_scene_query_v1_t kSceneQueryV1 = {
     sizeof(nimbus_host_scene_query_v1_t), intersect, occluded, interaction, spawn_ray, spawn_ray_to,
     bounding_sphere};
 
-const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t), generate_ray, resolution};
+const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t), generate_ray, resolution, connect};
 
 }  // namespace nimbus

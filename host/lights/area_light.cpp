@@ -130,12 +130,12 @@ void area_sample_emission(const AreaLight &a, const GeometryScene &geo, const fl
   a.radiance.store(out.Le);
   out.pdf_pos = sp.pdf_area;
   out.pdf_dir = cosine_hemisphere_pdf(local.z) * side_pmf;
-  out.flags = NIMBUS_LIGHT_AREA;
+  out.flags = NIMBUS_LIGHT_AREA | (a.two_sided ? NIMBUS_LIGHT_TWO_SIDED : 0u);
 }
 
 void area_fill_info(const AreaLight &a, const GeometryScene &geo, nimbus_light_info_t &info) {
   const ShapeRecord &s = geo.shapes()[a.shape];
-  info.flags = NIMBUS_LIGHT_AREA;
+  info.flags = NIMBUS_LIGHT_AREA | (a.two_sided ? NIMBUS_LIGHT_TWO_SIDED : 0u);
   Vec3f lo{kInfinity}, hi{-kInfinity};
   if (s.type == ShapeType::Sphere || s.type == ShapeType::Disk) {
     lo = s.center - Vec3f(s.radius), hi = s.center + Vec3f(s.radius);

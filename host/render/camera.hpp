@@ -45,6 +45,32 @@ class Camera {
     ray.flags = 0;
   }
 
+  // Light-tracing connection (see nimbus_host_camera_v1_t::connect).
+  float connect(const Vec3f &p, const float lens_u[2], float raster[2], Vec3f &lens_point) const {
+    Vec3f lens_cam{0, 0, 0};
+    if (aperture_ > 0) {
+      const Vec2f l = sample_uniform_disk_concentric(lens_u[0], lens_u[1]);
+      lens_cam = Vec3f{l.x * aperture_, l.y * aperture_, 0};
+    }
+    lens_point = origin_ + frame_.s * lens_cam.x + frame_.t * lens_cam.y;
+    const Vec3f d = p - lens_point;
+    const float dist2 = length_squared(d);
+    const Vec3f dc{dot(d, frame_.s), dot(d, frame_.t), dot(d, frame_.n)};  // camera space
+    if (!(dc.z > 0) || !(dist2 > 0)) return 0;
+    // The point of the focus plane the ray lens -> p passes through, seen from the lens centre, gives
+    // the raster position (for a pinhole: p itself).
+    Vec3f q = dc;
+    if (aperture_ > 0) q = lens_cam + dc * (focus_ / dc.z);
+    const float sx = q.x / q.z, sy = q.y / q.z;  // on the plane z = 1
+    const float aspect = float(height_) / float(width_);
+    raster[0] = (sx / tan_half_ + 1) * 0.5f * float(width_);
+    raster[1] = (1 - sy / (tan_half_ * aspect)) * 0.5f * float(height_);
+    if (!(raster[0] >= 0 && raster[0] < float(width_) && raster[1] >= 0 && raster[1] < float(height_))) return 0;
+    const float cos_theta = dc.z / std::sqrt(dist2);
+    const float pixel_area = sqr(2 * tan_half_ / float(width_));
+    return cos_theta / (dist2 * pixel_area * sqr(sqr(cos_theta)));
+  }
+
   // Angular width of one pixel at the image centre.
   float pixel_angle() const { return 2 * std::atan(tan_half_ / float(width_)); }
   uint32_t width() const { return width_; }

@@ -262,10 +262,10 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       {"integrator", integrator_id},
       {"light_sampler", sampler.plugin->desc->id},
       {"scene", desc->path},
+      {"seed", std::to_string(desc->render.seed)},  // exact for any 64-bit seed
       {"stopped_by", failure != NIMBUS_OK ? "error" : was_cancelled ? "cancel" : (iterations && done >= iterations) ? "iterations" : "time"}};
   std::vector<std::pair<std::string, double>> nmeta = {{"iterations", double(done)},
                                                        {"seconds", seconds},
-                                                       {"seed", double(desc->render.seed)},
                                                        {"threads", double(ctx.worker_count)},
                                                        {"nonfinite_samples", double(film.nonfinite_count())},
                                                        {"rays", double(result.rays)}};

@@ -23,7 +23,8 @@ typedef int32_t nimbus_element_t;
 #define NIMBUS_SERVICE_FILM "nimbus.host.film"
 typedef struct nimbus_host_film_v1 {
   uint32_t struct_size;
-  /* [main-thread, !rendering] Declares element `name` (borrowed, copied; [a-z0-9_] ) with `channels`
+  /* [main-thread, !rendering] Declares element `name` (borrowed, copied; [a-z0-9_.]+, dots separate
+   * segments as in "lightmix.key") with `channels`
    * (1 or 3). Returns its id (>= 1), the id it already had, or NIMBUS_ELEMENT_INVALID. */
   nimbus_element_t (*register_element)(const nimbus_host_t *host, const char *name, uint32_t channels,
                                        uint32_t flags);
@@ -35,8 +36,10 @@ typedef struct nimbus_host_film_v1 {
   void (*accumulate)(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx, nimbus_element_t el,
                      uint32_t x, uint32_t y, const float *value);
   /* [render-thread] Adds value (borrowed) at continuous raster position (fx, fy), any pixel, into
-   * per-worker buffers merged after end_iteration. Splats are divided by the pixel count at output
-   * (light-tracing normalisation: each iteration's splats estimate the full image once). */
+   * per-worker buffers merged after end_iteration. Like accumulated values, splats are divided by the
+   * number of iterations at output: each iteration's splats must estimate the whole image once (a light
+   * tracer tracing M paths per iteration splats contribution / M). Only elements registered with
+   * NIMBUS_ELEMENT_SPLAT take splats ("beauty" may be re-registered with it). */
   void (*splat)(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx, nimbus_element_t el, float fx,
                 float fy, const float *value);
 } nimbus_host_film_v1_t;
