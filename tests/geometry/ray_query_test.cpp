@@ -80,11 +80,12 @@ TEST(RayQuery, BoxHitsAllSixFacesWithOutwardNormals) {
   ShapeDesc b;
   b.type = ShapeType::Box;
   b.mesh = box_mesh({-1, -1, -1}, {1, 1, 1});
-  auto g = GeometryScene::build(scene_with({b}));
+  const SceneDesc d = scene_with({b});  // the geometry references the meshes: keep them alive
+  auto g = GeometryScene::build(d);
   ASSERT_TRUE(g.ok());
   const Vec3f dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   for (const Vec3f &d : dirs) {
-    const nimbus_ray_t r = make_ray(d * -5.0f + Vec3f(0.1f, 0.2f, 0.3f) * (1 - abs(d)), d);
+    const nimbus_ray_t r = make_ray(d * -5.0f + Vec3f(0.1f, 0.2f, 0.3f) * (Vec3f(1) - abs(d)), d);
     nimbus_hit_t hit;
     (*g)->intersect(r, hit);
     ASSERT_EQ(hit.geom_id, 0u);
@@ -163,7 +164,8 @@ TEST(RayQuery, OccludedRespectsTfar) {
 TEST(RayQuery, DiskHitInsideRadiusOnly) {
   ShapeDesc s;
   s.type = ShapeType::Disk, s.center = {0, 0, 1}, s.radius = 0.5f, s.normal = {0, 0, 1};
-  auto g = GeometryScene::build(scene_with({s}));
+  const SceneDesc d = scene_with({s});
+  auto g = GeometryScene::build(d);
   ASSERT_TRUE(g.ok());
   nimbus_hit_t hit;
   (*g)->intersect(make_ray({0.49f, 0, 0}, {0, 0, 1}), hit);
