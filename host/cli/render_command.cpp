@@ -35,6 +35,8 @@ constexpr const char *kHelp =
     "  --elements a,b,...     render elements besides beauty (added to the scene's)\n"
     "  --caustics on|off      the caustics solver's switch (scene key render.caustics)\n"
     "  --integrator ID        integrator plugin (overrides the scene), e.g. pt, nimbus.pt\n"
+    "  --light-sampler ID     light sampler plugin (default: nimbus.lights.tree above 8 lights,\n"
+    "                         nimbus.lights.power otherwise)\n"
     "  -q, --quiet            no progress output\n"
     "\n"
     "Ctrl-C stops after the current iteration and writes the image so far (exit code 130).\n";
@@ -105,6 +107,9 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
     } else if (k == "--caustics") {
       if (!value(v) || (v != "on" && v != "off")) return "--caustics: expected 'on' or 'off', got '" + v + "'";
       a.caustics = v;
+    } else if (k == "--light-sampler") {
+      if (!value(v) || v.empty()) return "--light-sampler: expected a plugin id";
+      a.options.light_sampler = v;
     } else if (k == "--integrator") {
       if (!value(v) || v.empty()) return "--integrator: expected a plugin id";
       a.integrator = v;

@@ -109,7 +109,10 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   auto ip = registry.create(desc->render.integrator, NIMBUS_KIND_INTEGRATOR, host);
   if (!ip) return Error{desc->path + ": integrator: " + ip.error().message};
   integrator.registry = &registry, integrator.plugin = ip.value();
-  auto sp = registry.create(options.light_sampler, NIMBUS_KIND_LIGHT_SAMPLER, host);
+  const std::string sampler_id = !options.light_sampler.empty()                ? options.light_sampler
+                                 : ctx.lights.count() > kTreeLightThreshold ? "nimbus.lights.tree"
+                                                                            : "nimbus.lights.power";
+  auto sp = registry.create(sampler_id, NIMBUS_KIND_LIGHT_SAMPLER, host);
   if (!sp) return Error{"light sampler: " + sp.error().message};
   sampler.registry = &registry, sampler.plugin = sp.value();
   auto iface = interface_of<nimbus_integrator_v1_t>(integrator.plugin, NIMBUS_IFACE_INTEGRATOR,

@@ -25,8 +25,12 @@ struct RenderOptions {
   std::vector<std::string> elements;   // in addition to the scene's
   std::string output_exr;              // PNG preview goes beside it (same stem)
   std::string ocio_config;             // empty = default lookup
-  std::string light_sampler = "nimbus.lights.power";
+  // Empty: nimbus.lights.tree above kTreeLightThreshold lights, nimbus.lights.power otherwise.
+  std::string light_sampler;
 };
+
+// Scenes with more lights than this get the many-light tree by default.
+inline constexpr uint32_t kTreeLightThreshold = 8;
 
 struct RenderProgress {
   uint64_t iteration = 0;          // completed iterations

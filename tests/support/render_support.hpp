@@ -26,6 +26,7 @@ struct RenderRequest {
   uint32_t threads = 2;
   std::vector<std::string> elements;
   std::vector<std::pair<std::string, std::string>> options;  // integrator options, e.g. caustics=on
+  std::string light_sampler;                                  // empty: the host's choice
 };
 
 class SceneRenderer {
@@ -54,6 +55,7 @@ class SceneRenderer {
     opt.seed = r.seed;
     opt.threads = r.threads;
     opt.elements = r.elements;
+    opt.light_sampler = r.light_sampler;
     opt.output_exr = (dir_ / ("out" + std::to_string(renders_++) + ".exr")).string();
     std::atomic<bool> cancel{false};
     auto result = nimbus::render(d, opt, registry_, cancel, {}, {});

@@ -1,0 +1,152 @@
+// Light samplers through the real host: pmfs sum to one over all lights at any receiver, pick()
+// frequencies follow pmf() (chi-square), and the tree and power samplers render the same image.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <map>
+#include <random>
+
+#include "abi/host_services.hpp"
+#include "render/render_context.hpp"
+#include "support/render_support.hpp"
+
+namespace nimbus::testing {
+namespace {
+
+// A room lit by 40 area lights of powers over 6 decades, 10 point lights, a spot and a sun.
+std::string many_lights_scene() {
+  std::string s = R"(
+render: { resolution: [32, 24], seed: 5, max_depth: 4 }
+camera: { position: [0, -9, 3], look_at: [0, 0, 1], up: [0, 0, 1], fov: 60 }
+materials:
+  white: { type: diffuse, albedo: [0.7, 0.7, 0.7] }
+  lamp: { type: diffuse, albedo: [0, 0, 0] }
+objects:
+  - { shape: rectangle, size: [20, 20], material: white }
+  - { shape: rectangle, size: [20, 6], material: white, transform: { rotate: [90, 0, 0], translate: [0, 5, 3] } }
+)";
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> U(0, 1);
+  for (int i = 0; i < 40; ++i) {
+    const float x = -8 + 16 * U(rng), y = -4 + 8 * U(rng), z = 0.5f + 4 * U(rng);
+    const float radiance = std::pow(10.0f, 6 * U(rng) - 3);
+    s += "  - { shape: " + std::string(i % 2 ? "sphere, radius: 0.1" : "rectangle, size: [0.3, 0.3]") +
+         (i % 2 ? ", center: [" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + "]" : "") +
+         ", material: lamp, emission: { radiance: [" + std::to_string(radiance) + ", " + std::to_string(radiance) +
+         ", " + std::to_string(radiance) + "] }" +
+         (i % 2 ? "" : ", transform: { rotate: [180, 0, 0], translate: [" + std::to_string(x) + ", " + std::to_string(y) +
+                           ", " + std::to_string(z) + "] }") +
+         " }\n";
+  }
+  s += "lights:\n";
+  for (int i = 0; i < 10; ++i)
+    s += "  - { type: point, position: [" + std::to_string(-8 + 16 * U(rng)) + ", " + std::to_string(-4 + 8 * U(rng)) +
+         ", " + std::to_string(0.5f + 4 * U(rng)) + "], intensity: [" + std::to_string(std::pow(10.0f, 3 * U(rng))) +
+         ", 1, 1] }\n";
+  s += "  - { type: spot, position: [0, -2, 5], direction: [0, 0, -1], cone: 30, softness: 10, intensity: [50, 50, 50] }\n";
+  s += "  - { type: sun, direction: [-1, 1, -2], irradiance: [3, 3, 3], angular_diameter: 0.53 }\n";
+  return s;
+}
+
+class SamplerHarness {
+ public:
+  explicit SamplerHarness(const std::string &yaml, const std::string &sampler)
+      : registry_([](int, const std::string &) {}) {
+    auto desc = parse_scene_string(yaml, "many.yaml");
+    EXPECT_TRUE(desc.ok()) << (desc.ok() ? "" : desc.error().message);
+    desc_ = std::move(desc.value());
+    auto ctx = RenderContext::build(desc_, 1);
+    EXPECT_TRUE(ctx.ok());
+    ctx_ = std::move(ctx.value());
+    services_ = std::make_unique<HostServices>(ctx_.get());
+    registry_.discover({std::string(NIMBUS_BINARY_DIR) + "/lib/nimbus/plugins"}, services_->host());
+    auto p = registry_.create(sampler, NIMBUS_KIND_LIGHT_SAMPLER, services_->host());
+    EXPECT_TRUE(p.ok()) << (p.ok() ? "" : p.error().message);
+    plugin_ = p.value();
+    iface_ = static_cast<const nimbus_light_sampler_v1_t *>(plugin_->get_interface(plugin_, NIMBUS_IFACE_LIGHT_SAMPLER, 1));
+    nimbus_scene_info_t info{};
+    info.header.struct_size = sizeof(info);
+    EXPECT_EQ(iface_->prepare(plugin_, &info), NIMBUS_OK);
+  }
+  ~SamplerHarness() { registry_.destroy(plugin_); }
+
+  uint32_t light_count() const { return ctx_->lights.count(); }
+  float pmf(const nimbus_interaction_t &ix, uint32_t l) const { return iface_->pmf(plugin_, &ix, l); }
+  uint32_t pick(const nimbus_interaction_t &ix, float u, float *pmf) const { return iface_->pick(plugin_, &ix, u, pmf); }
+
+ private:
+  SceneDesc desc_;
+  std::unique_ptr<RenderContext> ctx_;
+  std::unique_ptr<HostServices> services_;
+  PluginRegistry registry_;
+  const nimbus_plugin_t *plugin_ = nullptr;
+  const nimbus_light_sampler_v1_t *iface_ = nullptr;
+};
+
+nimbus_interaction_t receiver(const Vec3f &p, const Vec3f &n) {
+  nimbus_interaction_t ix{};
+  p.store(ix.p);
+  n.store(ix.ng);
+  n.store(ix.ns);
+  ix.light_id = NIMBUS_NONE;
+  return ix;
+}
+
+class LightSamplerTest : public ::testing::TestWithParam<const char *> {};
+
+TEST_P(LightSamplerTest, PmfSumsToOneAndMatchesPickFrequencies) {
+  SamplerHarness h(many_lights_scene(), GetParam());
+  ASSERT_EQ(h.light_count(), 40u + 10u + 2u);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> U(0, 1);
+  for (int r = 0; r < 6; ++r) {
+    const nimbus_interaction_t ix = receiver({-8 + 16 * U(rng), -4 + 8 * U(rng), U(rng) * 2},
+                                             normalize(Vec3f{U(rng) - 0.5f, U(rng) - 0.5f, 1}));
+    double sum = 0;
+    std::vector<double> pmf(h.light_count());
+    for (uint32_t l = 0; l < h.light_count(); ++l) sum += pmf[l] = h.pmf(ix, l);
+    EXPECT_NEAR(sum, 1.0, 1e-4) << "receiver " << r;
+    // Frequencies of pick() against pmf(), chi-square over lights with expected count >= 5.
+    const int n = 200000;
+    std::vector<int> counts(h.light_count(), 0);
+    for (int i = 0; i < n; ++i) {
+      float p = 0;
+      const uint32_t l = h.pick(ix, U(rng), &p);
+      ASSERT_LT(l, h.light_count());
+      ASSERT_NEAR(p, pmf[l], 1e-5 + 1e-4 * pmf[l]) << "pick's pmf must equal pmf()";
+      ++counts[l];
+    }
+    double chi2 = 0;
+    int dof = -1;
+    double pooled_expected = 0, pooled_observed = 0;
+    for (uint32_t l = 0; l < h.light_count(); ++l) {
+      const double e = pmf[l] * n;
+      if (e < 5) {
+        pooled_expected += e, pooled_observed += counts[l];
+        continue;
+      }
+      chi2 += (counts[l] - e) * (counts[l] - e) / e;
+      ++dof;
+    }
+    if (pooled_expected >= 5) chi2 += sqr(float(pooled_observed - pooled_expected)) / pooled_expected, ++dof;
+    // 99.9th percentile of chi-square is below dof + 4.5 sqrt(2 dof) + 10 for these sizes.
+    EXPECT_LT(chi2, dof + 4.5 * std::sqrt(2.0 * dof) + 10) << "dof " << dof << ", receiver " << r;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Samplers, LightSamplerTest, ::testing::Values("nimbus.lights.power", "nimbus.lights.tree"));
+
+TEST(LightSamplers, TreeAndPowerRenderTheSameImage) {
+  SceneRenderer r;
+  const std::string scene = many_lights_scene();
+  RenderRequest req{"nimbus.pt", 128, 21};
+  req.light_sampler = "nimbus.lights.power";
+  const Rgb power = mean_rgb(r.render(scene, req).layers.at("beauty").data);
+  req.light_sampler = "nimbus.lights.tree";
+  req.seed = 22;
+  const Rgb tree = mean_rgb(r.render(scene, req).layers.at("beauty").data);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(tree[c] / power[c], 1.0, 0.03) << "channel " << c;
+}
+
+}  // namespace
+}  // namespace nimbus::testing
