@@ -1,0 +1,100 @@
+// Ctrl-C: the first SIGINT finishes the current iteration and writes complete files (exit 130); the
+// output file is replaced by rename, so an earlier image at the same path is never left truncated.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <cmath>
+#include <memory>
+#include <regex>
+
+#include "e2e_support.hpp"
+
+namespace nimbus::e2e {
+namespace {
+
+constexpr int kManyIterations = 100000;  // far more than any run of this test reaches
+const std::string kOldContent = "an earlier render, not an EXR\n";
+
+bool shows_progress(const std::string &err) { return err.find("iteration ") != std::string::npos; }
+
+// Starts a render that would take minutes and waits until it reports an iteration, so the SIGINT handler
+// is installed and the film holds at least one iteration.
+std::unique_ptr<Process> start_long_render(const TestDir &dir, const std::string &exr) {
+  auto p = std::make_unique<Process>(
+      nimbus_argv({"render", scene("box.yaml"), "-o", exr, "--iterations", std::to_string(kManyIterations)}),
+      dir.path());
+  // Generous: under the sanitizers start-up alone takes seconds.
+  EXPECT_TRUE(p->wait_for_stderr(shows_progress, std::chrono::seconds(60))) << "no progress reported";
+  return p;
+}
+
+// What the CLI's closing line says it wrote: "nimbus: N iterations in S s -> ... (interrupted)".
+std::optional<uint64_t> reported_iterations(const std::string &err) {
+  std::smatch m;
+  if (!std::regex_search(err, m, std::regex(R"(nimbus: (\d+) iterations in .*\(interrupted\))")))
+    return std::nullopt;
+  return std::stoull(m[1]);
+}
+
+TEST(Interrupt, CtrlCFinishesTheIterationAndWritesCompleteFiles) {
+  TestDir dir;
+  const std::string exr = dir.file("long.exr");
+  auto p = start_long_render(dir, exr);
+  p->send_signal(SIGINT);
+  const ProcessResult r = p->wait(std::chrono::seconds(120));
+  ASSERT_TRUE(exited_with(r, 130)) << r.describe();
+
+  const auto img = read_exr(exr);
+  ASSERT_TRUE(img);
+  const std::optional<double> n = meta_number(*img, "nimbus:iterations");
+  ASSERT_TRUE(n) << "nimbus:iterations missing";
+  EXPECT_GE(*n, 1);
+  EXPECT_LT(*n, kManyIterations);
+  EXPECT_EQ(meta_string(*img, "nimbus:stopped_by"), std::optional<std::string>("cancel"));
+  // The header and the CLI's summary agree on how many iterations the image holds.
+  EXPECT_EQ(reported_iterations(r.err), std::optional<uint64_t>(uint64_t(*n))) << r.err;
+  for (const char *c : {"R", "G", "B"}) {
+    const std::vector<float> &px = plane(*img, c);
+    EXPECT_EQ(px.size(), 64u * 48u) << c;
+    for (float v : px) ASSERT_TRUE(std::isfinite(v)) << c;
+  }
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"long.exr", "long.png"}));
+}
+
+TEST(Interrupt, EarlierOutputIsReplacedWholeNeverTruncated) {
+  TestDir dir;
+  const std::string exr = dir.file("out.exr");
+  write_bytes(exr, kOldContent);
+  auto p = start_long_render(dir, exr);
+  // While the render runs, the earlier file is untouched: nothing opens the target for writing up front.
+  EXPECT_EQ(read_bytes(exr), kOldContent);
+  p->send_signal(SIGINT);
+  const ProcessResult r = p->wait(std::chrono::seconds(120));
+  ASSERT_TRUE(exited_with(r, 130)) << r.describe();
+  // A graceful stop writes a complete new image (read_exr fails the test on a truncated or old file).
+  const auto img = read_exr(exr);
+  ASSERT_TRUE(img);
+  EXPECT_EQ(meta_string(*img, "nimbus:stopped_by"), std::optional<std::string>("cancel"));
+  EXPECT_EQ(dir.temporaries(), std::vector<std::string>{});
+}
+
+TEST(Interrupt, SecondCtrlCStopsAtOnceAndLeavesOldOrCompleteFile) {
+  TestDir dir;
+  const std::string exr = dir.file("out.exr");
+  write_bytes(exr, kOldContent);
+  auto p = start_long_render(dir, exr);
+  p->send_signal(SIGINT);
+  p->send_signal(SIGINT);
+  const ProcessResult r = p->wait(std::chrono::seconds(120));
+  // Killed by the re-raised SIGINT, or the first one's graceful stop won the race.
+  EXPECT_TRUE((!r.exited && r.signal == SIGINT) || exited_with(r, 130)) << r.describe();
+  // Wherever the second signal landed, even mid-write, `out.exr` is the old file or a complete new one.
+  if (read_bytes(exr) != kOldContent) {
+    const auto img = read_exr(exr);
+    ASSERT_TRUE(img) << "out.exr is neither the earlier file nor a readable EXR";
+    EXPECT_EQ(plane(*img, "R").size(), 64u * 48u);
+  }
+}
+
+}  // namespace
+}  // namespace nimbus::e2e
