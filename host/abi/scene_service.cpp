@@ -82,12 +82,21 @@ float connect(const nimbus_host_t *host, const float p[3], const float lens_u[2]
   return w;
 }
 
+float sample_film(const nimbus_host_t *host, uint32_t x, uint32_t y, const float u[2], float film[2]) {
+  float weight = 0;
+  const Vec2f d = context_of(host).filter.sample(u[0], u[1], weight);
+  film[0] = float(x) + 0.5f + d.x;
+  film[1] = float(y) + 0.5f + d.y;
+  return weight;
+}
+
 }  // namespace
 
 const nimbus_host_scene_query_v1_t kSceneQueryV1 = {
     sizeof(nimbus_host_scene_query_v1_t), intersect, occluded, interaction, spawn_ray, spawn_ray_to,
     bounding_sphere};
 
-const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t), generate_ray, resolution, connect};
+const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t), generate_ray, resolution, connect,
+                                           sample_film};
 
 }  // namespace nimbus

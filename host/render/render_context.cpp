@@ -14,6 +14,16 @@ Expected<std::unique_ptr<RenderContext>> RenderContext::build(const SceneDesc &d
   ctx->lights = std::move(lights.value());
   for (const MaterialDesc &m : desc.materials) ctx->bsdfs.push_back(make_bsdf(m));
   ctx->camera = Camera(desc.camera, desc.render.width, desc.render.height);
+  const std::string &f = desc.render.filter;
+  if (f == "box") {
+    ctx->filter = PixelFilter(FilterType::Box);
+  } else if (f == "gaussian") {
+    ctx->filter = PixelFilter(FilterType::Gaussian);
+  } else if (f == "blackman-harris") {
+    ctx->filter = PixelFilter(FilterType::BlackmanHarris);
+  } else {
+    return Error{desc.path + ": unknown pixel filter '" + f + "' (known: box, gaussian, blackman-harris)"};
+  }
   ctx->film = std::make_unique<Film>(desc.render.width, desc.render.height);
   const int n = threads > 0 ? int(threads) : tbb::this_task_arena::max_concurrency();
   ctx->arena = std::make_unique<tbb::task_arena>(n);

@@ -19,6 +19,7 @@
 #include "lights/light_set.hpp"
 #include "materials/bsdf.hpp"
 #include "render/camera.hpp"
+#include "render/pixel_filter.hpp"
 #include "scene/scene_desc.hpp"
 
 namespace nimbus {
@@ -31,6 +32,7 @@ struct RenderContext {
   LightSet lights;
   std::vector<Bsdf> bsdfs;  // one per scene material
   Camera camera;
+  PixelFilter filter;
   std::unique_ptr<Film> film;
   uint64_t seed = 1;
   // Film element of each LightMix group (empty when LightMix was not requested).

@@ -30,6 +30,10 @@ struct RenderDesc {
   // Options for the integrator (e.g. caustics: on). Values are kept as written.
   std::map<std::string, std::string> options;
   std::vector<std::string> elements;  // requested render elements besides beauty
+  std::string filter = "box";         // pixel filter: box | gaussian | blackman-harris
+  // Render region (crop window) in pixels, [x0, x1) x [y0, y1); empty (all zero) = the whole image.
+  uint32_t region[4] = {0, 0, 0, 0};
+  std::string light_sampler;          // empty: the host's choice
 };
 
 struct CameraDesc {

@@ -31,7 +31,10 @@ class PathTracer final : public sdk::Integrator {
     film_ = host().service<nimbus_host_film_v1_t>(NIMBUS_SERVICE_FILM);
     rng_ = host().service<nimbus_host_rng_v1_t>(NIMBUS_SERVICE_RNG);
     lightmix_ = host().service<nimbus_ext_lightmix_v1_t>(NIMBUS_EXT_LIGHTMIX);  // optional
-    return scene_ && camera_ && bsdf_ && lights_ && film_ && rng_ ? NIMBUS_OK : NIMBUS_E_UNSUPPORTED;
+    return scene_ && camera_ && bsdf_ && lights_ && film_ && rng_ &&
+                   NIMBUS_HAS_MEMBER(camera_, nimbus_host_camera_v1_t, sample_film)
+               ? NIMBUS_OK
+               : NIMBUS_E_UNSUPPORTED;
   }
 
   nimbus_status_t prepare(const nimbus_render_setup_t &setup) override {
@@ -120,10 +123,12 @@ class PathTracer final : public sdk::Integrator {
   void trace_pixel(const nimbus_thread_ctx_t &ctx, uint32_t x, uint32_t y, nimbus_rng_t &rng,
                    SampleRecord &rec) const {
     const nimbus_host_t *h = host().get();
-    nimbus_camera_sample_t cs{{float(x) + next(rng), float(y) + next(rng)}, {next(rng), next(rng)}};
+    const float uf[2] = {next(rng), next(rng)};
+    nimbus_camera_sample_t cs{{0, 0}, {next(rng), next(rng)}};
+    const float filter_weight = camera_->sample_film(h, x, y, uf, cs.film);
     nimbus_ray_t ray;
-    const float cam_weight = camera_->generate_ray(h, &cs, &ray);
-    if (cam_weight <= 0) return;
+    const float cam_weight = camera_->generate_ray(h, &cs, &ray) * filter_weight;
+    if (cam_weight == 0) return;
 
     Rgb beta(cam_weight);
     bool specular = true;         // the previous bounce was delta (or there was none): no MIS on hits

@@ -62,7 +62,7 @@ typedef struct nimbus_host_scene_query_v1 {
    * occludes it. out is caller storage. */
   void (*spawn_ray_to)(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float p[3],
                        nimbus_ray_t *out);
-  /* [any-thread] Bounding sphere of the whole scene (centre out, radius returned). */
+  /* [any-thread] Bounding sphere of the whole scene: center (out) and radius (returned). */
   float (*bounding_sphere)(const nimbus_host_t *host, float center[3]);
 } nimbus_host_scene_query_v1_t;
 
@@ -89,6 +89,11 @@ typedef struct nimbus_host_camera_v1 {
    * the lens adds L * W to the pixel's mean; 0 when p does not project onto the image. */
   float (*connect)(const nimbus_host_t *host, const float p[3], const float lens_u[2], float raster[2],
                    float lens_point[3]);
+  /* [any-thread] Film position (out, raster pixels) of a camera sample of pixel (x, y) drawn with u
+   * (borrowed, 2 numbers) from the scene's pixel filter; returns the sample's weight (multiply the
+   * sample's radiance by it). The position always lies in pixel (x, y)'s filter support, and the
+   * sample is accumulated into pixel (x, y). */
+  float (*sample_film)(const nimbus_host_t *host, uint32_t x, uint32_t y, const float u[2], float film[2]);
 } nimbus_host_camera_v1_t;
 
 #ifdef __cplusplus
