@@ -1,0 +1,738 @@
+// nimbus.caustics: the one-click caustics solver (Sik & Krivanek 2019; spec in
+// shared/design/caustics-solver.md). Camera paths are nimbus.pt's paths (PT + NEE + power-heuristic MIS,
+// throughput Russian roulette, the same random numbers); photon passes between camera passes store
+// photons after sharp bounces, and camera paths look them up at their first two rough vertices, with MIS
+// weights that put merging and path tracing in one power-heuristic combination (mis.hpp). Without an
+// active photon map a camera pass runs the plain path tracer (zero-cost rule, spec 9).
+#include <nimbus/nimbus.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "core/math.hpp"
+#include "core/sampling.hpp"
+#include "emitters.hpp"
+#include "mis.hpp"
+#include "photon_map.hpp"
+#include "sample_record.hpp"
+#include "schedule.hpp"
+
+namespace nimbus::caustics {
+namespace {
+
+const char *const kRequired[] = {"nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1",
+                                 "nimbus.host.lights@1",      "nimbus.host.film@1",   "nimbus.host.rng@1",
+                                 "nimbus.host.tasks@1",       nullptr};
+const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix", nullptr};
+
+// Random-number streams: camera samples use nimbus.pt's stream (same numbers, same paths); photon path
+// p of photon pass j uses derive(p, j, kStreamPhoton).
+constexpr uint64_t kStreamCamera = 0;
+constexpr uint64_t kStreamPhoton = 0x70686f746f6e;  // "photon"
+
+constexpr uint64_t kPhotonPathsPerTask = 4096;
+constexpr uint64_t kPhotonsPerPathCap = 4;  // a task stops tracing when its buffer holds this many per path
+// N_max: 2^20 photon paths per pass instead of the spec's 2^22 (see schedule.hpp and the report):
+// on 2 cores and images of ~0.25 MPix, 2^22 paths would cost as much as ~20 camera passes each.
+constexpr uint64_t kMaxPhotonPaths = uint64_t(1) << 20;
+constexpr uint64_t kProbePaths = uint64_t(1) << 16;
+
+inline bool has(nimbus_lobe_t lobes, nimbus_lobe_t bits) { return (lobes & bits) != 0; }
+
+class CausticsSolver final : public sdk::Integrator {
+ public:
+  NIMBUS_DESCRIPTOR("nimbus.caustics", "Caustics solver (PT + selective photon merging, MIS)", "Nimbus",
+                    NIMBUS_KIND_INTEGRATOR, 1, 0, 0, kFeatures, kRequired)
+
+  nimbus_status_t init() override {
+    scene_ = host().service<nimbus_host_scene_query_v1_t>(NIMBUS_SERVICE_SCENE_QUERY);
+    camera_ = host().service<nimbus_host_camera_v1_t>(NIMBUS_SERVICE_CAMERA);
+    bsdf_ = host().service<nimbus_host_bsdf_v1_t>(NIMBUS_SERVICE_BSDF);
+    lights_ = host().service<nimbus_host_lights_v1_t>(NIMBUS_SERVICE_LIGHTS);
+    film_ = host().service<nimbus_host_film_v1_t>(NIMBUS_SERVICE_FILM);
+    rng_ = host().service<nimbus_host_rng_v1_t>(NIMBUS_SERVICE_RNG);
+    tasks_ = host().service<nimbus_host_tasks_v1_t>(NIMBUS_SERVICE_TASKS);
+    progress_ = host().service<nimbus_host_progress_v1_t>(NIMBUS_SERVICE_PROGRESS);  // optional
+    lightmix_ = host().service<nimbus_ext_lightmix_v1_t>(NIMBUS_EXT_LIGHTMIX);       // optional
+    return scene_ && camera_ && bsdf_ && lights_ && film_ && rng_ && tasks_ ? NIMBUS_OK : NIMBUS_E_UNSUPPORTED;
+  }
+
+  nimbus_status_t prepare(const nimbus_render_setup_t &setup) override {
+    const nimbus_host_t *h = host().get();
+    max_depth_ = setup.max_depth;
+    sampler_ = setup.light_sampler;
+    sampler_iface_ = setup.light_sampler_iface;
+    if (!sampler_ || !sampler_iface_) return NIMBUS_E_INVALID_ARG;
+    enabled_ = true;
+    for (uint32_t i = 0; i < setup.option_count; ++i) {
+      const nimbus_option_t &o = setup.options[i];
+      if (o.key && o.value && std::strcmp(o.key, "caustics") == 0) {
+        const std::string v = o.value;
+        if (v == "off" || v == "false" || v == "no" || v == "0")
+          enabled_ = false;
+        else if (v == "on" || v == "true" || v == "yes" || v == "1")
+          enabled_ = true;
+        else
+          return NIMBUS_E_INVALID_ARG;
+      }
+    }
+    float center[3];
+    scene_radius_ = scene_->bounding_sphere(h, center);
+    infinite_.clear();
+    light_group_.clear();
+    std::vector<Emitter> emitters;
+    const uint32_t n = lights_->count(h);
+    for (uint32_t i = 0; i < n; ++i) {
+      nimbus_light_info_t info{};
+      info.header.struct_size = sizeof(info);
+      if (lights_->info(h, i, &info) != NIMBUS_OK) return NIMBUS_E_INTERNAL;
+      if (info.flags & NIMBUS_LIGHT_INFINITE) infinite_.push_back(i);
+      light_group_.push_back(info.group);
+      emitters.push_back(make_emitter(info));
+    }
+    emitters_.build(std::move(emitters), scene_radius_);
+    registered_ = {};
+    registered_.direct = film_->register_element(h, "direct", 3, NIMBUS_ELEMENT_AVERAGE);
+    registered_.indirect = film_->register_element(h, "indirect", 3, NIMBUS_ELEMENT_AVERAGE);
+    registered_.emission = film_->register_element(h, "emission", 3, NIMBUS_ELEMENT_AVERAGE);
+    registered_.albedo = film_->register_element(h, "albedo", 3, NIMBUS_ELEMENT_AVERAGE);
+    registered_.normal = film_->register_element(h, "normal", 3, NIMBUS_ELEMENT_AVERAGE);
+    registered_.depth = film_->register_element(h, "depth", 1, NIMBUS_ELEMENT_AVERAGE);
+    registered_.caustics = film_->register_element(h, "caustics", 3, NIMBUS_ELEMENT_AVERAGE);
+    registered_.caustics_merge = film_->register_element(h, "caustics_merge", 3, NIMBUS_ELEMENT_AVERAGE);
+    return NIMBUS_OK;
+  }
+
+  nimbus_status_t begin_render(const nimbus_render_info_t &info) override {
+    const nimbus_host_t *h = host().get();
+    const auto active = [&](nimbus_element_t e) { return film_->is_active(h, e) ? e : NIMBUS_ELEMENT_INVALID; };
+    ids_.direct = active(registered_.direct);
+    ids_.indirect = active(registered_.indirect);
+    ids_.emission = active(registered_.emission);
+    ids_.albedo = active(registered_.albedo);
+    ids_.normal = active(registered_.normal);
+    ids_.depth = active(registered_.depth);
+    ids_.caustics = active(registered_.caustics);
+    ids_.caustics_merge = active(registered_.caustics_merge);
+    ids_.split_light = ids_.direct >= 0 || ids_.indirect >= 0 || ids_.emission >= 0 || ids_.caustics >= 0;
+    ids_.lightmix = lightmix_ && lightmix_->is_active(h);
+    records_.resize(info.worker_count);
+    saw_sharp_.resize(info.worker_count);
+    for (auto &s : saw_sharp_) s = 0;
+    theta_pix_ = camera_->resolution(h, &width_, &height_);
+    armed_ = enabled_ && emitters_.emits_photons();
+    ScheduleConfig cfg;
+    cfg.n_max = kMaxPhotonPaths;
+    cfg.n_min = kMaxPhotonPaths / 64;
+    cfg.probe = kProbePaths;
+    cfg.camera_paths = std::max<uint64_t>(1, uint64_t(width_) * height_);
+    schedule_ = PhotonSchedule(cfg);
+    useful_merge_.assign(armed_ ? size_t(width_) * height_ : 0, 0.0f);
+    useful_total_.assign(useful_merge_.size(), 0.0f);
+    map_photons_.clear();
+    map_ = PhotonKdTree();
+    map_active_ = false;
+    emitter_pdfs_known_ = false;
+    stats_ = {};
+    return NIMBUS_OK;
+  }
+
+  nimbus_status_t begin_iteration(uint64_t iteration) override {
+    if (!armed_) return NIMBUS_OK;
+    const uint64_t paths = schedule_.plan(iteration);
+    if (paths > 0) {
+      if (nimbus_status_t s = photon_pass(paths); s != NIMBUS_OK) return s;
+      schedule_.pass_done(iteration, map_paths_, map_photons_.size());
+      if (schedule_.passes() == 1 && !photons_saw_sharp_ && !camera_saw_sharp()) schedule_.set_dormant(true);
+    }
+    map_active_ = schedule_.map_active();
+    map_pass_ = schedule_.passes();
+    return NIMBUS_OK;
+  }
+
+  nimbus_status_t render_tile(const nimbus_thread_ctx_t &ctx, const nimbus_tile_t &tile) override {
+    const nimbus_host_t *h = host().get();
+    uint32_t width = 0, height = 0;
+    camera_->resolution(h, &width, &height);
+    SampleRecord &rec = records_[ctx];
+    for (uint32_t y = tile.y0; y < tile.y1; ++y)
+      for (uint32_t x = tile.x0; x < tile.x1; ++x) {
+        nimbus_rng_t rng;
+        rng_->derive(h, uint64_t(y) * width + x, tile.iteration, kStreamCamera, &rng);
+        rec.reset();
+        if (map_active_)
+          trace_pixel<true>(ctx, x, y, rng, rec);
+        else
+          trace_pixel<false>(ctx, x, y, rng, rec);
+        write(ctx, x, y, rec);
+        if (armed_) {
+          const size_t i = size_t(y) * width_ + x;
+          useful_total_[i] += luminance(rec.beauty);
+          if (map_active_) useful_merge_[i] += luminance(rec.merge);
+        }
+      }
+    return NIMBUS_OK;
+  }
+
+  nimbus_status_t end_iteration(uint64_t iteration) override {
+    if (!armed_) return NIMBUS_OK;
+    if (schedule_.dormant() && camera_saw_sharp()) schedule_.set_dormant(false);
+    if (map_active_) {
+      uint64_t useful = 0;
+      for (size_t i = 0; i < useful_merge_.size(); ++i)
+        useful += useful_merge_[i] > float(kUsefulThreshold) * useful_total_[i] ? 1 : 0;
+      schedule_.iteration_done(iteration, useful_merge_.empty() ? 0.0 : double(useful) / double(useful_merge_.size()));
+      ++stats_.map_iterations;
+    }
+    return NIMBUS_OK;
+  }
+
+  void end_render(nimbus_status_t) override {
+    if (progress_ && enabled_) {
+      const nimbus_host_t *h = host().get();
+      progress_->stat_add(h, "caustics_photon_paths", double(stats_.photon_paths));
+      progress_->stat_add(h, "caustics_photons", double(stats_.photons));
+      progress_->stat_add(h, "caustics_photon_passes", double(stats_.passes));
+      progress_->stat_add(h, "caustics_map_iterations", double(stats_.map_iterations));
+      const double bytes = stats_.photons > 0 ? double(stats_.photon_bytes) / double(stats_.photons)
+                                              : double(sizeof(Photon));
+      progress_->stat_add(h, "caustics_bytes_per_photon", bytes);
+    }
+    map_photons_.clear();
+    map_photons_.shrink_to_fit();
+    map_ = PhotonKdTree();
+  }
+
+ private:
+  static float next(nimbus_rng_t &r) { return nimbus_rng_next_float(&r); }
+
+  // ---- vertex classification ------------------------------------------------------------------------
+  // sharp: every lobe is delta or GGX alpha < kSharpAlpha (spec 2). Decided by material, not by lobe.
+  bool is_sharp(const nimbus_interaction_t &ix, nimbus_lobe_t lobes) const {
+    if (has(lobes, NIMBUS_LOBE_DIFFUSE)) return false;
+    if (!has(lobes, NIMBUS_LOBE_GLOSSY)) return has(lobes, NIMBUS_LOBE_SPECULAR);
+    return bsdf_->min_roughness(host().get(), &ix) < kSharpAlpha;
+  }
+
+  bool camera_saw_sharp() {
+    for (const uint8_t s : saw_sharp_)
+      if (s) return true;
+    return false;
+  }
+
+  // ---- photon pass ----------------------------------------------------------------------------------
+  struct PhotonChunk {
+    std::vector<Photon> photons;
+    uint64_t paths = 0;  // completed paths
+    bool saw_sharp = false;
+  };
+
+  // P_pos of area lights: one sample_emission per light (uniform area sampling: constant).
+  void learn_emitter_pdfs() {
+    if (emitter_pdfs_known_) return;
+    const auto fn = [](const nimbus_thread_ctx_t *, uint64_t b, uint64_t e, void *user) {
+      auto *self = static_cast<CausticsSolver *>(user);
+      for (uint64_t l = b; l < e; ++l) {
+        Emitter &em = self->emitters_[l];
+        if (em.kind != EmitterKind::Area) continue;
+        const float u[4] = {0.5f, 0.5f, 0.25f, 0.5f};
+        nimbus_light_emission_t out{};
+        self->lights_->sample_emission(self->host().get(), uint32_t(l), u, &out);
+        em.pdf_pos = out.pdf_pos > 0 && std::isfinite(out.pdf_pos) ? out.pdf_pos : 0.0f;
+      }
+    };
+    tasks_->parallel_for(host().get(), emitters_.size(), 64, fn, this);
+    emitter_pdfs_known_ = true;
+  }
+
+  nimbus_status_t photon_pass(uint64_t paths) {
+    const nimbus_host_t *h = host().get();
+    learn_emitter_pdfs();
+    const uint32_t pass = schedule_.passes() + 1;
+    const uint64_t tasks = (paths + kPhotonPathsPerTask - 1) / kPhotonPathsPerTask;
+    std::vector<PhotonChunk> chunks(tasks);
+    struct Job {
+      CausticsSolver *self;
+      std::vector<PhotonChunk> *chunks;
+      uint32_t pass;
+    } job{this, &chunks, pass};
+    const auto fn = [](const nimbus_thread_ctx_t *ctx, uint64_t b, uint64_t e, void *user) {
+      const Job &j = *static_cast<Job *>(user);
+      PhotonChunk &c = (*j.chunks)[b / kPhotonPathsPerTask];
+      c.photons.reserve(size_t(e - b));
+      const size_t cap = size_t(e - b) * kPhotonsPerPathCap;
+      for (uint64_t p = b; p < e && c.photons.size() < cap; ++p) {
+        j.self->trace_photon(*ctx, p, j.pass, c);
+        ++c.paths;
+      }
+    };
+    if (progress_) progress_->report(h, 0, paths, "photons");
+    if (nimbus_status_t s = tasks_->parallel_for(h, paths, kPhotonPathsPerTask, fn, &job); s != NIMBUS_OK) return s;
+    // Concatenate in task order: photon indices never depend on threads.
+    size_t total = 0;
+    uint64_t done = 0;
+    bool sharp = false;
+    for (const PhotonChunk &c : chunks) total += c.photons.size(), done += c.paths, sharp |= c.saw_sharp;
+    map_photons_.clear();
+    map_photons_.reserve(total);
+    for (PhotonChunk &c : chunks) {
+      map_photons_.insert(map_photons_.end(), c.photons.begin(), c.photons.end());
+      std::vector<Photon>().swap(c.photons);
+    }
+    map_paths_ = done;
+    photons_saw_sharp_ = photons_saw_sharp_ || sharp;
+    map_ = PhotonKdTree();
+    const ParallelFor parallel = [this](size_t count, const std::function<void(size_t)> &f) {
+      const auto task = [](const nimbus_thread_ctx_t *, uint64_t b, uint64_t e, void *user) {
+        const auto &fn = *static_cast<const std::function<void(size_t)> *>(user);
+        for (uint64_t i = b; i < e; ++i) fn(size_t(i));
+      };
+      tasks_->parallel_for(host().get(), count, 1, task, const_cast<std::function<void(size_t)> *>(&f));
+    };
+    map_.build(map_photons_, parallel);
+    if (progress_) progress_->report(h, paths, paths, "photons");
+    stats_.photon_paths += done;
+    stats_.photons += map_photons_.size();
+    stats_.photon_bytes += map_photons_.size() * sizeof(Photon) + map_.index_bytes();
+    ++stats_.passes;
+    return NIMBUS_OK;
+  }
+
+  // One photon path: emission by power-proportional light selection, storage at rough vertices after a
+  // sharp one, termination after two consecutive rough vertices (spec 4), MIS state per photon.
+  void trace_photon(const nimbus_thread_ctx_t &ctx, uint64_t path, uint32_t pass, PhotonChunk &out) const {
+    const nimbus_host_t *h = host().get();
+    nimbus_rng_t rng;
+    rng_->derive(h, path, pass, kStreamPhoton, &rng);
+    float sel = 0;
+    const int64_t li = emitters_.pick(next(rng), &sel);
+    if (li < 0 || !(sel > 0)) return;
+    const uint32_t light = uint32_t(li);
+    const Emitter &em = emitters_[light];
+    const float ue[4] = {next(rng), next(rng), next(rng), next(rng)};
+    nimbus_light_emission_t es;
+    lights_->sample_emission(h, light, ue, &es);
+    if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0)) return;
+    const Vec3f org = Vec3f::load(es.org), n_e = Vec3f::load(es.n), dir0 = Vec3f::load(es.dir);
+    const bool delta_pos = es.flags & NIMBUS_LIGHT_DELTA_POSITION;
+    const bool infinite = es.flags & NIMBUS_LIGHT_INFINITE;
+    const float cos_e = delta_pos || infinite ? 1.0f : std::abs(dot(n_e, dir0));
+    const float lp = sel * es.pdf_pos * es.pdf_dir;
+    Rgb beta = Rgb::load(es.Le) * (cos_e / lp);
+    if (is_black(beta) || !is_finite(beta)) return;
+    PhotonMis mis_state;
+    mis_state.emit(em.hittable(), cos_e, lp);
+
+    nimbus_ray_t ray;
+    org.store(ray.org);
+    dir0.store(ray.dir);
+    ray.tnear = (es.flags & NIMBUS_LIGHT_AREA) ? 1e-4f * std::max(1.0f, max_component(abs(org))) : 0;
+    ray.tfar = kInfinity;
+    ray.mask = ~0u, ray.flags = 0;
+
+    bool had_sharp = false, prev_rough = false;
+    for (uint32_t depth = 1; depth <= kPhotonMaxVertices; ++depth) {
+      nimbus_hit_t hit;
+      scene_->intersect(h, &ctx, &ray, &hit, 1);
+      if (hit.geom_id == NIMBUS_NONE) return;
+      nimbus_interaction_t ix;
+      scene_->interaction(h, &ray, &hit, &ix);
+      const Vec3f wo = -Vec3f::load(ray.dir), ng = Vec3f::load(ix.ng);
+      const float c_in = std::abs(dot(ng, wo));
+      if (!(c_in > 0)) return;
+      mis_state.arrive(c_in);
+      const nimbus_lobe_t lobes = bsdf_->lobes(h, &ix);
+      const bool rough = !is_sharp(ix, lobes);
+      const bool smooth_only = !has(lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
+      if (!rough) out.saw_sharp = true;
+
+      float nee_term = 0;
+      if (depth == 1 && !smooth_only) nee_term = first_vertex_nee(ix, light, em, es, wo, lp, c_in);
+
+      // Store after a sharp bounce; a photon of depth d completes paths of >= d + 1 segments.
+      const bool stored = rough && had_sharp && depth + 1 <= max_depth_;
+      if (stored) {
+        Photon ph;
+        std::memcpy(ph.p, ix.p, sizeof(ph.p));
+        ph.dir = encode_octahedral(wo);
+        ph.normal = encode_octahedral(ng);
+        beta.store(ph.power);
+        ph.A = mis_state.A;
+        ph.B = mis_state.B;
+        ph.bits = Photon::pack(depth, prev_rough, mis_state.b_valid, light);
+        out.photons.push_back(ph);
+      }
+      if (rough && prev_rough) return;  // two consecutive rough vertices
+      if (depth == kPhotonMaxVertices) return;
+
+      float wo_arr[3], u[3] = {next(rng), next(rng), next(rng)};
+      wo.store(wo_arr);
+      nimbus_bsdf_sample_t bs;
+      bsdf_->sample(h, &ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
+      if (!(bs.pdf > 0)) return;
+      const Vec3f wi = Vec3f::load(bs.wi);
+      const bool delta = has(bs.lobe, NIMBUS_LOBE_SPECULAR);
+      mis_state.scatter(std::abs(dot(ng, wi)), bs.pdf, bs.pdf_rev, rough, stored, delta ? 0.0f : nee_term);
+      const Rgb t = Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(ix.ns))) / bs.pdf);
+      // Russian roulette on this bounce's throughput: photon power stays roughly constant.
+      const float q = std::min(1.0f, max_component(t));
+      if (!(q > 0) || next(rng) >= q) return;
+      beta *= t / q;
+      if (is_black(beta) || !is_finite(beta)) return;
+      prev_rough = rough;
+      had_sharp = had_sharp || !rough;
+      scene_->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
+    }
+  }
+
+  // E of the first photon vertex: how NEE from it would have sampled the emission point.
+  float first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
+                         const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const {
+    const nimbus_host_t *h = host().get();
+    const float pmf = sampler_iface_->pmf(sampler_, &ix, light);
+    if (!(pmf > 0)) return 0;
+    float wo_arr[3];
+    wo.store(wo_arr);
+    if (em.delta_position()) {
+      const float d2 = length_squared(Vec3f::load(es.org) - Vec3f::load(ix.p));
+      return photon_nee_term(true, pmf, d2, lp, c_in);
+    }
+    if (em.infinite()) {
+      const float pdf = em.delta_direction() ? 1.0f : lights_->pdf_incident(h, light, &ix, wo_arr, nullptr);
+      return photon_nee_term(true, pmf * pdf, 1.0f, lp, c_in);
+    }
+    nimbus_interaction_t on_light{};
+    std::memcpy(on_light.p, es.org, sizeof(on_light.p));
+    std::memcpy(on_light.ng, es.n, sizeof(on_light.ng));
+    std::memcpy(on_light.ns, es.n, sizeof(on_light.ns));
+    on_light.light_id = light;
+    on_light.flags = NIMBUS_IX_EMISSIVE;
+    const float pdf = lights_->pdf_incident(h, light, &ix, wo_arr, &on_light);
+    const float cos_z = std::abs(dot(Vec3f::load(es.n), Vec3f::load(es.dir)));
+    // nk * d2 = pmf * pdf * cos_z: pass d2 = 1 with nk already multiplied out.
+    return photon_nee_term(true, pmf * pdf * cos_z, 1.0f, lp, c_in);
+  }
+
+  // ---- camera paths ---------------------------------------------------------------------------------
+  void write(const nimbus_thread_ctx_t &ctx, uint32_t x, uint32_t y, const SampleRecord &rec) const {
+    const nimbus_host_t *h = host().get();
+    const auto put = [&](nimbus_element_t e, const Rgb &v) {
+      if (e < 0) return;
+      float a[3];
+      v.store(a);
+      film_->accumulate(h, &ctx, e, x, y, a);
+    };
+    put(NIMBUS_ELEMENT_BEAUTY, rec.beauty);
+    put(ids_.direct, rec.direct);
+    put(ids_.indirect, rec.indirect);
+    put(ids_.emission, rec.emission);
+    put(ids_.caustics, rec.caustics);
+    put(ids_.caustics_merge, rec.merge);
+    put(ids_.albedo, rec.albedo);
+    put(ids_.normal, rec.normal);
+    if (ids_.depth >= 0) film_->accumulate(h, &ctx, ids_.depth, x, y, &rec.depth);
+    for (const auto &[g, v] : rec.groups) {
+      float a[3];
+      v.store(a);
+      lightmix_->accumulate(h, &ctx, g, x, y, a);
+    }
+  }
+
+  // Camera-side MIS state of one path (only with an active photon map).
+  struct CameraState {
+    CameraMis mis;
+    float a_r = 0;      // mis(pi r^2), 0 until the first rough vertex fixes r
+    float radius = 0;
+    float length = 0;   // path length from the lens to the current vertex
+  };
+
+  // nimbus.pt's camera path. With Map, the same path (same random numbers) also carries the MIS state,
+  // looks photons up at its first two rough vertices and weights hits and NEE against merging.
+  template <bool Map>
+  void trace_pixel(const nimbus_thread_ctx_t &ctx, uint32_t x, uint32_t y, nimbus_rng_t &rng,
+                   SampleRecord &rec) const {
+    const nimbus_host_t *h = host().get();
+    nimbus_camera_sample_t cs{{0, 0}, {0, 0}};
+    float filter_weight = 1;
+    if (has_sample_film()) {
+      const float uf[2] = {next(rng), next(rng)};
+      cs.lens[0] = next(rng), cs.lens[1] = next(rng);
+      filter_weight = camera_->sample_film(h, x, y, uf, cs.film);
+    } else {
+      cs.film[0] = float(x) + next(rng), cs.film[1] = float(y) + next(rng);
+      cs.lens[0] = next(rng), cs.lens[1] = next(rng);
+    }
+    nimbus_ray_t ray;
+    const float cam_weight = camera_->generate_ray(h, &cs, &ray) * filter_weight;
+    if (has_sample_film() ? cam_weight == 0 : cam_weight <= 0) return;
+
+    Rgb beta(cam_weight);
+    bool specular = true;         // the previous bounce was delta (or there was none): no MIS on hits
+    bool albedo_done = false;     // the albedo element takes the first non-specular surface
+    float prev_pdf = 0;           // solid-angle pdf of the BSDF sample that produced `ray`
+    nimbus_interaction_t prev{};  // the vertex `ray` left
+    CameraState cam;
+    // `segments` counts the segments of the path up to the vertex `ray` reaches.
+    for (uint32_t segments = 1;; ++segments) {
+      nimbus_hit_t hit;
+      scene_->intersect(h, &ctx, &ray, &hit, 1);
+      const Vec3f dir = Vec3f::load(ray.dir);
+      if (hit.geom_id == NIMBUS_NONE) {
+        add_infinite<Map>(rec, beta, prev, dir, specular, prev_pdf, segments, cam);
+        break;
+      }
+      nimbus_interaction_t ix;
+      scene_->interaction(h, &ray, &hit, &ix);
+      const Vec3f wo = -dir;
+      if (segments == 1) {
+        rec.normal = Vec3f::load(ix.ns);
+        rec.depth = hit.t;
+      }
+      if constexpr (Map) {
+        cam.length += hit.t;
+        cam.mis.arrive(std::abs(dot(Vec3f::load(ix.ng), dir)));
+      }
+
+      if (ix.flags & NIMBUS_IX_EMISSIVE) {
+        float le[3], wo_arr[3];
+        wo.store(wo_arr);
+        lights_->eval_emitted(h, &ix, wo_arr, le);
+        const Rgb Le = Rgb::load(le);
+        if (!is_black(Le)) {
+          const uint32_t l = ix.light_id;
+          if constexpr (!Map) {
+            float w = 1;
+            if (!specular) {
+              const float light_pdf = sampler_iface_->pmf(sampler_, &prev, l) *
+                                      lights_->pdf_incident(h, l, &prev, ray.dir, &ix);
+              w = power_heuristic(prev_pdf, light_pdf);
+            }
+            rec.add(beta * Le * w, light_group_[l], segments, ids_);
+          } else {
+            float nee_ratio = 0;
+            if (!specular) {
+              const float light_pdf = sampler_iface_->pmf(sampler_, &prev, l) *
+                                      lights_->pdf_incident(h, l, &prev, ray.dir, &ix);
+              nee_ratio = mis(light_pdf / prev_pdf);
+            }
+            const float lp = emitters_.lp(l, Vec3f::load(ix.ng), wo);
+            const float w = hit_weight(nee_ratio, cam.a_r, cam.mis.s_cam(segments), lp);
+            rec.add(beta * Le * w, light_group_[l], segments, ids_, lp > 0 && cam.mis.eligible(segments));
+          }
+        }
+      }
+
+      const nimbus_lobe_t lobes = bsdf_->lobes(h, &ix);
+      const bool smooth_only = !(lobes & (NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY));
+      if (!albedo_done && !smooth_only) {
+        float a[3], wo_arr[3];
+        wo.store(wo_arr);
+        bsdf_->albedo(h, &ix, wo_arr, a);
+        rec.albedo = beta / cam_weight * Rgb::load(a);
+        albedo_done = true;
+      }
+      bool lookup = false;
+      if constexpr (Map) {
+        const bool rough = !is_sharp(ix, lobes);
+        lookup = cam.mis.append(rough);
+        if (lookup && cam.mis.rough_count == 1) {
+          cam.radius = merge_radius(theta_pix_, cam.length, map_pass_, scene_radius_);
+          cam.a_r = mis(kPi * cam.radius * cam.radius);
+        }
+        // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
+        if (lookup && segments + 2 <= max_depth_) merge(ix, wo, beta, cam, segments, rec);
+      } else if (!saw_sharp_[ctx.worker_index] && has(lobes, NIMBUS_LOBE_SPECULAR | NIMBUS_LOBE_GLOSSY) &&
+                 is_sharp(ix, lobes)) {
+        saw_sharp_[ctx.worker_index] = 1;  // wakes a dormant solver (zero-cost rule)
+      }
+      if (segments >= max_depth_) break;
+
+      if (!smooth_only) direct_light<Map>(ctx, ix, wo, rng, beta, segments + 1, rec, cam);
+
+      // Continue the path by sampling the BSDF.
+      float wo_arr[3], u[3] = {next(rng), next(rng), next(rng)};
+      wo.store(wo_arr);
+      nimbus_bsdf_sample_t bs;
+      bsdf_->sample(h, &ix, wo_arr, u, NIMBUS_MODE_RADIANCE, &bs);
+      if (!(bs.pdf > 0)) break;
+      const Vec3f wi = Vec3f::load(bs.wi);
+      if constexpr (Map)
+        cam.mis.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup, segments,
+                        float(map_paths_));
+      beta *= Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(ix.ns))) / bs.pdf);
+      if (is_black(beta) || !is_finite(beta)) break;
+      specular = (bs.lobe & NIMBUS_LOBE_SPECULAR) != 0;
+      prev_pdf = bs.pdf;
+      prev = ix;
+
+      // Russian roulette after three segments, on the throughput (as pbrt-v4).
+      if (segments >= 3) {
+        const float q = std::max(0.0f, 1 - max_component(beta));
+        if (next(rng) < q) break;
+        beta /= 1 - q;
+      }
+      scene_->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
+    }
+  }
+
+  // Radiance from infinite lights along an escaped ray, MIS-weighted against light sampling (and, with
+  // a map, against merging).
+  template <bool Map>
+  void add_infinite(SampleRecord &rec, const Rgb &beta, const nimbus_interaction_t &prev, const Vec3f &dir,
+                    bool specular, float prev_pdf, uint32_t segments, const CameraState &cam) const {
+    float d[3];
+    dir.store(d);
+    for (uint32_t l : infinite_) {
+      float le[3];
+      lights_->eval_infinite(host().get(), l, d, le);
+      const Rgb Le = Rgb::load(le);
+      if (is_black(Le)) continue;
+      if constexpr (!Map) {
+        float w = 1;
+        if (!specular) {
+          const float light_pdf = sampler_iface_->pmf(sampler_, &prev, l) *
+                                  lights_->pdf_incident(host().get(), l, &prev, d, nullptr);
+          w = power_heuristic(prev_pdf, light_pdf);
+        }
+        rec.add(beta * Le * w, light_group_[l], segments, ids_);
+      } else {
+        float nee_ratio = 0;
+        if (!specular) {
+          const float light_pdf = sampler_iface_->pmf(sampler_, &prev, l) *
+                                  lights_->pdf_incident(host().get(), l, &prev, d, nullptr);
+          nee_ratio = mis(light_pdf / prev_pdf);
+        }
+        const float lp = emitters_.lp(l, Vec3f(), dir);
+        const float w = hit_weight(nee_ratio, cam.a_r, cam.mis.s_cam(segments), lp);
+        rec.add(beta * Le * w, light_group_[l], segments, ids_, lp > 0 && cam.mis.eligible(segments));
+      }
+    }
+  }
+
+  // Next-event estimation: one light chosen by the light sampler, MIS-weighted against BSDF sampling
+  // (and, with a map, against merging). `segments` = length of the path it completes.
+  template <bool Map>
+  void direct_light(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix, const Vec3f &wo,
+                    nimbus_rng_t &rng, const Rgb &beta, uint32_t segments, SampleRecord &rec,
+                    const CameraState &cam) const {
+    const nimbus_host_t *h = host().get();
+    const float u_pick = next(rng);
+    const float u_light[2] = {next(rng), next(rng)};
+    float pmf = 0;
+    const uint32_t light = sampler_iface_->pick(sampler_, &ix, u_pick, &pmf);
+    if (light == NIMBUS_NONE || !(pmf > 0)) return;
+    nimbus_light_incident_t ls;
+    lights_->sample_incident(h, light, &ix, u_light, &ls);
+    if (!(ls.pdf > 0)) return;
+    const Rgb Li = Rgb::load(ls.L);
+    if (is_black(Li)) return;
+    float wo_arr[3], f[3], bsdf_pdf = 0, bsdf_pdf_rev = 0;
+    wo.store(wo_arr);
+    bsdf_->eval(h, &ix, wo_arr, ls.wi, NIMBUS_MODE_RADIANCE, f, &bsdf_pdf, Map ? &bsdf_pdf_rev : nullptr);
+    const Vec3f wi = Vec3f::load(ls.wi);
+    const Rgb contrib = Rgb::load(f) * std::abs(dot(wi, Vec3f::load(ix.ns)));
+    if (is_black(contrib)) return;
+    nimbus_ray_t shadow;
+    scene_->spawn_ray_to(h, &ix, ls.p, &shadow);
+    if (ls.flags & NIMBUS_LIGHT_INFINITE) shadow.tfar = kInfinity;
+    uint8_t blocked = 0;
+    scene_->occluded(h, &ctx, &shadow, &blocked, 1);
+    if (blocked) return;
+    const bool delta = (ls.flags & (NIMBUS_LIGHT_DELTA_POSITION | NIMBUS_LIGHT_DELTA_DIRECTION)) != 0;
+    const float light_pdf = pmf * ls.pdf;
+    if constexpr (!Map) {
+      const float w = delta ? 1.0f : power_heuristic(light_pdf, bsdf_pdf);
+      rec.add(beta * contrib * Li * (w / light_pdf), light_group_[light], segments, ids_);
+    } else {
+      const Emitter &em = emitters_[light];
+      const bool infinite = ls.flags & NIMBUS_LIGHT_INFINITE;
+      const float hit_ratio = delta ? 0.0f : mis(bsdf_pdf / light_pdf);
+      const float lp = emitters_.lp(light, Vec3f::load(ls.n), -wi);
+      const float cos_j = std::abs(dot(Vec3f::load(ix.ng), wi));
+      const float d2 = infinite ? 1.0f : ls.dist * ls.dist;
+      float nk = pmf;  // delta lights
+      if (!delta) nk = infinite ? light_pdf : light_pdf * std::abs(dot(Vec3f::load(ls.n), wi)) / d2;
+      (void)em;
+      const float w = nee_weight(hit_ratio, cam.a_r, bsdf_pdf_rev, cam.mis.s_cam(segments), lp, cos_j / d2, nk);
+      rec.add(beta * contrib * Li * (w / light_pdf), light_group_[light], segments, ids_,
+              lp > 0 && cam.mis.eligible(segments));
+    }
+  }
+
+  // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel, MIS-weighted merges.
+  void merge(const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta, const CameraState &cam,
+             uint32_t s, SampleRecord &rec) const {
+    const nimbus_host_t *h = host().get();
+    const float r = cam.radius, r2 = r * r;
+    const float neff = float(map_paths_);
+    const float inv_paths = 1.0f / neff;
+    const float m_neff = mis(neff), a_r_neff = mis(kPi * r2 * neff);
+    const bool first_rough = cam.mis.rough_count == 1;
+    const Vec3f ng = Vec3f::load(ix.ng);
+    float wo_arr[3];
+    wo.store(wo_arr);
+    const float kernel_norm = 2 / (kPi * r2);
+    map_.query(Vec3f::load(ix.p), r, [&](const Photon &ph, float d2) {
+      const uint32_t k = s + ph.depth();
+      if (k > max_depth_) return;
+      if (!(dot(decode_octahedral(ph.normal), ng) > 0)) return;
+      const Vec3f wp = decode_octahedral(ph.dir);
+      float wp_arr[3], f[3], pdf_fwd = 0, pdf_rev = 0;
+      wp.store(wp_arr);
+      bsdf_->eval(h, &ix, wo_arr, wp_arr, NIMBUS_MODE_RADIANCE, f, &pdf_fwd, &pdf_rev);
+      const Rgb fr = Rgb::load(f);
+      if (is_black(fr)) return;
+      const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, a_r_neff, m_neff,
+                                   m_neff, first_rough, cam.mis.gamma_sum(k));
+      const float kernel = kernel_norm * (1 - d2 / r2);
+      const Rgb c = beta * fr * Rgb::load(ph.power) * (w * kernel * inv_paths);
+      if (!is_finite(c) || is_black(c)) return;
+      rec.add_merge(c, light_group_[ph.light()], ids_);
+    });
+  }
+
+  bool has_sample_film() const { return NIMBUS_HAS_MEMBER(camera_, nimbus_host_camera_v1_t, sample_film); }
+
+  const nimbus_host_scene_query_v1_t *scene_ = nullptr;
+  const nimbus_host_camera_v1_t *camera_ = nullptr;
+  const nimbus_host_bsdf_v1_t *bsdf_ = nullptr;
+  const nimbus_host_lights_v1_t *lights_ = nullptr;
+  const nimbus_host_film_v1_t *film_ = nullptr;
+  const nimbus_host_rng_v1_t *rng_ = nullptr;
+  const nimbus_host_tasks_v1_t *tasks_ = nullptr;
+  const nimbus_host_progress_v1_t *progress_ = nullptr;
+  const nimbus_plugin_t *sampler_ = nullptr;
+  const nimbus_light_sampler_v1_t *sampler_iface_ = nullptr;
+  const nimbus_ext_lightmix_v1_t *lightmix_ = nullptr;
+  uint32_t max_depth_ = 16;
+  std::vector<uint32_t> infinite_;
+  std::vector<uint32_t> light_group_;  // LightMix group of each light
+  ElementIds registered_, ids_;        // all registered elements; the active ones
+  sdk::PerWorker<SampleRecord> records_;
+  mutable sdk::PerWorker<uint8_t> saw_sharp_;  // a camera path met a sharp vertex (per worker)
+
+  // The solver.
+  bool enabled_ = true;  // the `caustics` switch
+  bool armed_ = false;   // enabled and some light emits photons
+  EmitterSet emitters_;
+  bool emitter_pdfs_known_ = false;
+  float scene_radius_ = 1, theta_pix_ = 0;
+  uint32_t width_ = 0, height_ = 0;
+  PhotonSchedule schedule_;
+  std::vector<Photon> map_photons_;
+  PhotonKdTree map_;
+  uint64_t map_paths_ = 0;  // photon paths behind the current map (Neff)
+  uint32_t map_pass_ = 0;   // its photon pass index j
+  bool map_active_ = false;
+  bool photons_saw_sharp_ = false;
+  std::vector<float> useful_merge_, useful_total_;  // per pixel: accumulated lum of merges (Mp), beauty (Tp)
+  struct Stats {
+    uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
+  } stats_;
+};
+
+}  // namespace
+}  // namespace nimbus::caustics
+
+NIMBUS_PLUGIN_LIBRARY(nimbus::caustics::CausticsSolver)

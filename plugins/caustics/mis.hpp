@@ -1,0 +1,194 @@
+// MIS between path tracing (BSDF hit H, next-event estimation N) and photon merging at camera vertex
+// x_s (M_s), evaluated iteratively as in the solver spec (shared/design/caustics-solver.md, section 3.3):
+// the photon side carries A (light-side techniques: H, N and merges further towards the light would
+// need more than one rough camera vertex, so only H and N) and B (the one merge at the next rough photon
+// vertex), the camera side a list of at most two pending merge terms R.
+//
+// Every quantity here is already raised to the MIS exponent: mis(x) = x^beta with beta = 2, the power
+// heuristic of nimbus.pt, so that paths without an eligible merge get exactly nimbus.pt's weights.
+// Russian roulette is excluded on both sides; delta lobes use forward = reverse pdf = 1.
+//
+// Notation (area-measure pseudo-densities of path x_0 (lens) ... x_k (emitter)): C_j camera side,
+// L_j light side, N_k NEE. "lp" = the emitter's photon-side product L_k * L_{k-1} without the receiver's
+// geometry term g (g = cos_{k-1} / d^2 for finite emitters, cos_{k-1} for infinite ones):
+//   area light      lp = P_sel * P_pos(z) * P_dir(z -> x_{k-1})
+//   point/spot      lp = P_sel * P_dir              (the position delta cancels)
+//   infinite        lp = P_sel * P_dir(w) * P_pos   (P_pos = 1 / (pi R_e^2) on the emission disk)
+//   directional     lp = P_sel * P_pos              (the direction delta cancels)
+// These are pure value types (no host calls) so that tests can drive them with synthetic paths.
+#pragma once
+
+#include <cstdint>
+
+namespace nimbus::caustics {
+
+// GGX alpha below which a lobe is "sharp" (caustic-forming); spec section 2.
+inline constexpr float kSharpAlpha = 0.1f;
+// D_photon: most vertices a photon path may have (x_{k-1} ... x_s).
+inline constexpr uint32_t kPhotonMaxVertices = 32;
+// Lookups (and merge techniques) at the first n_max + 1 = 2 rough camera vertices.
+inline constexpr uint32_t kLookupRoughVertices = 2;
+
+// The MIS exponent beta = 2 applied to one factor.
+inline float mis(float x) { return x * x; }
+
+// Photon-side state of one photon path (spec 3.3, "photon side").
+struct PhotonMis {
+  float A = 0;          // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
+  float B = 0;          // q_M,s' / q_M,s for the last stored rough vertex s', over the same factors
+  bool b_valid = false;  // B refers to a stored rough vertex followed only by sharp vertices
+
+  // Emission. hittable: BSDF sampling can hit the emitter (area and non-delta infinite lights).
+  // cos_e: |cos| at the emitter between its normal and the photon direction (1 for infinite lights).
+  void emit(bool hittable, float cos_e, float lp) {
+    A = hittable && lp > 0 ? mis(cos_e / lp) : 0.0f;
+    B = 0;
+    b_valid = false;
+  }
+  // Arrival at a vertex; c_in = |cos| there between the geometric normal and the arriving segment.
+  void arrive(float c_in) {
+    const float m = mis(c_in);
+    A /= m;
+    B /= m;
+  }
+  // Scattering at the current vertex: c_out = |cos| of the new direction, w_fwd its pdf, w_rev the pdf
+  // of the reverse direction (what a camera path would use). E: NEE term of the first vertex (below), 0
+  // elsewhere. rough / stored: the vertex's class and whether a photon was stored at it.
+  void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, float E) {
+    const float g = mis(c_out / w_fwd);
+    A = g * (mis(w_rev) * A + E);
+    if (rough) {
+      B = stored ? g : 0.0f;
+      b_valid = stored;
+    } else {
+      B = g * mis(w_rev) * B;
+    }
+  }
+};
+
+// The NEE term E of the first photon vertex x_{k-1} (after arrive()): N_k / (L_k L_{k-1}).
+// nk: the NEE area density of x_k seen from x_{k-1} including light selection (area lights:
+// pmf * pdf_incident * cos_z / d^2; delta positions: pmf; infinite: pmf * pdf_incident; directional:
+// pmf). d2: squared distance to the emitter (1 for infinite lights). c_in as in arrive().
+inline float photon_nee_term(bool nee_possible, float nk, float d2, float lp, float c_in) {
+  return nee_possible && lp > 0 ? mis(nk * d2 / (lp * c_in)) : 0.0f;
+}
+
+// One pending camera-side merge term (a merge technique at camera vertex s).
+struct CameraTerm {
+  float R = 0;
+  uint32_t s = 0;          // the camera vertex index that created it
+  bool has_sharp = false;  // a sharp vertex after x_s
+  bool last_rough = false; // the last appended vertex was rough
+  bool dead = false;       // two adjacent rough vertices after x_s: no merge at s for longer paths
+};
+
+// Camera-side state of one camera path (spec 3.3, "camera side").
+struct CameraMis {
+  CameraTerm terms[kLookupRoughVertices];
+  uint32_t n_terms = 0;
+  uint32_t rough_count = 0;  // rough vertices among x_1 .. x_j (after append)
+
+  // Arrival at x_{j+1}: c_in = |cos| at it. Not called for escaped rays (infinite lights).
+  void arrive(float c_in) {
+    const float m = mis(c_in);
+    for (uint32_t i = 0; i < n_terms; ++i) terms[i].R /= m;
+  }
+  // Appends the class of the scattering vertex just reached. Returns true when it is a lookup vertex
+  // (rough and among the first kLookupRoughVertices rough ones: E1 + E2).
+  bool append(bool rough) {
+    for (uint32_t i = 0; i < n_terms; ++i) {
+      CameraTerm &t = terms[i];
+      if (!rough) {
+        t.has_sharp = true;
+        t.last_rough = false;
+      } else if (t.last_rough) {
+        t.dead = true;
+      } else {
+        t.last_rough = true;
+      }
+    }
+    if (!rough) return false;
+    ++rough_count;
+    return rough_count <= kLookupRoughVertices;
+  }
+  // Scattering at x_j: c_out, w_fwd, w_rev as in PhotonMis::scatter. lookup: x_j is a lookup vertex
+  // (then a new term starts with Neff(x_j) * rho(x_j), neff_rho).
+  void scatter(float c_out, float w_fwd, float w_rev, bool lookup, uint32_t j, float neff_rho) {
+    const float g = mis(c_out / w_fwd);
+    const float r = mis(w_rev);
+    for (uint32_t i = 0; i < n_terms; ++i) terms[i].R *= g * r;
+    if (lookup && n_terms < kLookupRoughVertices) terms[n_terms++] = CameraTerm{g * mis(neff_rho), j};
+  }
+  // S_cam: sum of R over the merge techniques eligible for a path of k segments that ends here (an
+  // emitter hit at x_k, or NEE from x_{k-1}): E3 on the camera vertices after s.
+  float s_cam(uint32_t k) const {
+    float s = 0;
+    for (uint32_t i = 0; i < n_terms; ++i) {
+      const CameraTerm &t = terms[i];
+      if (t.has_sharp && !t.dead && k - t.s <= kPhotonMaxVertices) s += t.R;
+    }
+    return s;
+  }
+  // Whether any merge technique is eligible for a path of k segments ending here (caustics element).
+  bool eligible(uint32_t k) const {
+    for (uint32_t i = 0; i < n_terms; ++i) {
+      const CameraTerm &t = terms[i];
+      if (t.has_sharp && !t.dead && k - t.s <= kPhotonMaxVertices) return true;
+    }
+    return false;
+  }
+  // Sum of R over the terms that stay merge techniques when a photon of depth k - s completes the path
+  // at the current lookup vertex x_s (after append): the photon supplies the sharp vertex.
+  float gamma_sum(uint32_t k) const {
+    float s = 0;
+    for (uint32_t i = 0; i < n_terms; ++i) {
+      const CameraTerm &t = terms[i];
+      if (!t.dead && k - t.s <= kPhotonMaxVertices) s += t.R;
+    }
+    return s;
+  }
+};
+
+// Balance of the weights, guarding against 0/0 and overflow (an infinite competitor gives weight 0).
+inline float mis_weight(float others) {
+  const float w = 1.0f / (1.0f + others);
+  return w >= 0 && w <= 1 ? w : 0.0f;
+}
+
+// Weight of NEE from x_j to an emitter point (spec 3.3).
+//   hit_ratio:  q_H / q_N  = mis(omega^C_j(-> z) / n_omega) for hittable emitters (area, infinite
+//               non-delta), 0 for delta lights (computed by the caller: it is nimbus.pt's ratio)
+//   a_r:        mis(pi r^2) of this camera path, 0 when no photon map is active
+//   w_rev:      omega^L_j(z ->): pdf of scattering from the light's direction back to x_{j-1}
+//   s_cam:      CameraMis::s_cam(j + 1) after appending x_j
+//   lp, g, nk:  emitter product, receiver geometry (cos_j / d^2, or cos_j), NEE area density
+inline float nee_weight(float hit_ratio, float a_r, float w_rev, float s_cam, float lp, float g, float nk) {
+  float merges = 0;
+  if (a_r > 0 && s_cam > 0 && lp > 0) merges = a_r * mis(w_rev) * s_cam * mis(lp * g / nk);
+  return mis_weight(hit_ratio + merges);
+}
+
+// Weight of a BSDF-sampled emitter hit. nee_ratio = q_N / q_H (nimbus.pt's ratio; 0 when NEE could not
+// have sampled it); s_cam after arrival (finite emitters) or after the scatter (infinite ones).
+inline float hit_weight(float nee_ratio, float a_r, float s_cam, float lp) {
+  float merges = 0;
+  if (a_r > 0 && s_cam > 0 && lp > 0) merges = a_r * s_cam * mis(lp);
+  return mis_weight(nee_ratio + merges);
+}
+
+// Weight of merging photon (A, B, b_valid, prev_rough, depth) at lookup vertex x_s.
+//   w_cam_fwd:  omega^C_s(w_p): pdf that the camera path at x_s samples the photon's incoming direction
+//   w_cam_rev:  omega^L_s(w_p -> x_{s-1}): the reverse pdf of the same pair
+//   a_r_neff:   mis(pi r^2 * Neff_s * rho_s); neff: mis(Neff_s * rho_s); neff_b: mis(Neff at B's vertex)
+//   first_rough: x_s is the first rough camera vertex (c_s = 1)
+//   gamma_sum:  CameraMis::gamma_sum(s + depth)
+inline float merge_weight(float A, float B, bool b_valid, bool prev_rough, float w_cam_fwd, float w_cam_rev,
+                          float a_r_neff, float neff, float neff_b, bool first_rough, float gamma_sum) {
+  float light = A / a_r_neff;
+  if (first_rough && b_valid) light += B * neff_b / neff;
+  const float others = mis(w_cam_fwd) * light + (prev_rough ? 0.0f : mis(w_cam_rev) * gamma_sum / neff);
+  return mis_weight(others);
+}
+
+}  // namespace nimbus::caustics

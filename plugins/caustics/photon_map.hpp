@@ -1,0 +1,180 @@
+// Photons and the photon map: an implicit balanced kd-tree over the photon array, permuted in place
+// (median split on the widest axis, leaves of at most 8 photons), queried with a per-query radius.
+// A kd-tree rather than a hash grid because the merge radius varies over orders of magnitude within one
+// image (spec section 4). The tree is a pure function of the photon array: the top levels are split on
+// one thread, the subtrees below are built concurrently on disjoint ranges, so any thread count gives
+// the same tree.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/math.hpp"
+
+namespace nimbus::caustics {
+
+// Unit vector <-> two 16-bit octahedral coordinates (Cigolle et al. 2014), packed in 32 bits.
+inline uint32_t encode_octahedral(const Vec3f &v) {
+  const float l1 = std::abs(v.x) + std::abs(v.y) + std::abs(v.z);
+  float x = v.x / l1, y = v.y / l1;
+  if (v.z < 0) {
+    const float ox = (1 - std::abs(y)) * (x >= 0 ? 1.0f : -1.0f);
+    const float oy = (1 - std::abs(x)) * (y >= 0 ? 1.0f : -1.0f);
+    x = ox, y = oy;
+  }
+  const auto q = [](float f) { return uint32_t(std::lround(clamp(f * 0.5f + 0.5f, 0.0f, 1.0f) * 65535.0f)); };
+  return q(x) | (q(y) << 16);
+}
+
+inline Vec3f decode_octahedral(uint32_t e) {
+  const float x = float(e & 0xffffu) / 65535.0f * 2 - 1, y = float(e >> 16) / 65535.0f * 2 - 1;
+  Vec3f v(x, y, 1 - std::abs(x) - std::abs(y));
+  if (v.z < 0) {
+    const float ox = (1 - std::abs(y)) * (x >= 0 ? 1.0f : -1.0f);
+    const float oy = (1 - std::abs(x)) * (y >= 0 ? 1.0f : -1.0f);
+    v.x = ox, v.y = oy;
+  }
+  return normalize(v);
+}
+
+// One stored photon: 44 bytes.
+struct Photon {
+  float p[3];       // position, world space
+  uint32_t dir;     // octahedral: the incoming direction, pointing back to where the photon came from
+  uint32_t normal;  // octahedral: geometric normal at p (side test)
+  float power[3];   // flux carried, before division by the pass's photon path count
+  float A, B;       // MIS state (mis.hpp, PhotonMis) at arrival
+  uint32_t bits;    // depth (6) | prev_rough (1) | b_valid (1) | light index (24)
+
+  static constexpr uint32_t kMaxLight = (1u << 24) - 1;
+  uint32_t depth() const { return bits & 63u; }  // photon vertices x_s .. x_{k-1}, i.e. k - s
+  bool prev_rough() const { return (bits >> 6) & 1u; }
+  bool b_valid() const { return (bits >> 7) & 1u; }
+  uint32_t light() const { return bits >> 8; }
+  static uint32_t pack(uint32_t depth, bool prev_rough, bool b_valid, uint32_t light) {
+    return (depth & 63u) | (prev_rough ? 64u : 0u) | (b_valid ? 128u : 0u) | (std::min(light, kMaxLight) << 8);
+  }
+  Vec3f position() const { return Vec3f::load(p); }
+};
+static_assert(sizeof(Photon) == 44, "photon layout");
+
+// Runs fn(i) for i in [0, count), possibly concurrently.
+using ParallelFor = std::function<void(size_t count, const std::function<void(size_t)> &fn)>;
+
+inline void serial_for(size_t count, const std::function<void(size_t)> &fn) {
+  for (size_t i = 0; i < count; ++i) fn(i);
+}
+
+class PhotonKdTree {
+ public:
+  static constexpr size_t kLeafSize = 8;
+
+  // Permutes `photons` into tree order. The vector must outlive the tree and not change after.
+  void build(std::vector<Photon> &photons, const ParallelFor &parallel = serial_for) {
+    photons_ = photons.data();
+    n_ = photons.size();
+    uint32_t depth = 0;
+    while (((n_ + (size_t(1) << depth) - 1) >> depth) > kLeafSize) ++depth;
+    axis_.assign((size_t(1) << (depth + 1)), 0);
+    split_.assign(axis_.size(), 0.0f);
+    // Top levels on this thread, until there are enough subtrees to share out.
+    constexpr uint32_t kSerialLevels = 6;
+    std::vector<Range> pending;
+    split_top(Range{0, 0, n_}, kSerialLevels, pending);
+    parallel(pending.size(), [&](size_t i) { build_range(pending[i]); });
+  }
+
+  size_t size() const { return n_; }
+  const Photon *data() const { return photons_; }
+  // Bytes of index structure (besides the photons themselves).
+  size_t index_bytes() const { return axis_.size() * (sizeof(uint8_t) + sizeof(float)); }
+
+  // Calls f(photon, squared distance) for every photon with |p - q|^2 <= r^2 (computed in float as
+  // dx*dx + dy*dy + dz*dz), in tree order.
+  template <class F>
+  void query(const Vec3f &q, float r, F &&f) const {
+    if (n_ == 0 || !(r >= 0)) return;
+    const float r2 = r * r;
+    Range stack[64];
+    int top = 0;
+    stack[top++] = Range{0, 0, n_};
+    while (top > 0) {
+      const Range nd = stack[--top];
+      if (nd.hi - nd.lo <= kLeafSize) {
+        for (size_t i = nd.lo; i < nd.hi; ++i) {
+          const Photon &ph = photons_[i];
+          const float dx = ph.p[0] - q.x, dy = ph.p[1] - q.y, dz = ph.p[2] - q.z;
+          const float d2 = dx * dx + dy * dy + dz * dz;
+          if (d2 <= r2) f(ph, d2);
+        }
+        continue;
+      }
+      const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
+      const uint32_t a = axis_[nd.id];
+      const float d = q[int(a)] - split_[nd.id];
+      // Left holds p[a] <= split, right p[a] >= split. A point within r of q has |p[a] - q[a]| no
+      // smaller than |split - q[a]| on the far side (float subtraction is monotonic), and its computed
+      // d2 is no smaller than that square, so the test below never prunes a point the leaf would accept.
+      const bool near_left = d <= 0;
+      const Range left{2 * nd.id + 1, nd.lo, mid}, right{2 * nd.id + 2, mid, nd.hi};
+      if (d * d <= r2) stack[top++] = near_left ? right : left;
+      stack[top++] = near_left ? left : right;
+    }
+  }
+
+ private:
+  struct Range {
+    size_t id, lo, hi;
+  };
+
+  // Partitions one node: median on the widest axis of the range's bounds.
+  void split_node(const Range &nd) {
+    Vec3f lo(kInfinity), hi(-kInfinity);
+    for (size_t i = nd.lo; i < nd.hi; ++i) {
+      const Vec3f p = photons_[i].position();
+      lo = min(lo, p), hi = max(hi, p);
+    }
+    const Vec3f ext = hi - lo;
+    const uint32_t a = ext.x >= ext.y && ext.x >= ext.z ? 0u : (ext.y >= ext.z ? 1u : 2u);
+    axis_[nd.id] = uint8_t(a);
+    const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
+    std::nth_element(photons_ + nd.lo, photons_ + mid, photons_ + nd.hi,
+                     [a](const Photon &x, const Photon &y) { return x.p[a] < y.p[a]; });
+    split_[nd.id] = photons_[mid].p[a];  // the children permute their ranges later: keep the value
+  }
+
+  void split_top(const Range &nd, uint32_t levels, std::vector<Range> &out) {
+    if (nd.hi - nd.lo <= kLeafSize) return;
+    if (levels == 0) {
+      out.push_back(nd);
+      return;
+    }
+    split_node(nd);
+    const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
+    split_top(Range{2 * nd.id + 1, nd.lo, mid}, levels - 1, out);
+    split_top(Range{2 * nd.id + 2, mid, nd.hi}, levels - 1, out);
+  }
+
+  void build_range(const Range &root) {
+    std::vector<Range> stack{root};
+    while (!stack.empty()) {
+      const Range nd = stack.back();
+      stack.pop_back();
+      if (nd.hi - nd.lo <= kLeafSize) continue;
+      split_node(nd);
+      const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
+      stack.push_back(Range{2 * nd.id + 1, nd.lo, mid});
+      stack.push_back(Range{2 * nd.id + 2, mid, nd.hi});
+    }
+  }
+
+  Photon *photons_ = nullptr;
+  size_t n_ = 0;
+  std::vector<uint8_t> axis_;  // split axis per internal node, heap order
+  std::vector<float> split_;   // split value per internal node
+};
+
+}  // namespace nimbus::caustics

@@ -1,0 +1,101 @@
+// When to trace photons and how many (spec sections 3.5, 5 and 9), as a small state machine the plugin
+// drives from its iteration hooks: the merge radius schedule, the photon budget from the useful-pixel
+// ratio, interleaving of photon and camera passes, and back-off when photons are useless.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace nimbus::caustics {
+
+inline constexpr float kRadiusPixels = 1.5f;   // initial merge radius in pixel footprints
+inline constexpr float kRadiusAlpha = 0.75f;   // Knaus-Zwicker alpha: r^2 ~ j^(alpha - 1)
+inline constexpr double kUsefulThreshold = 0.01;  // pixel useful iff Mp > tau * Tp
+inline constexpr uint32_t kMaxIdleLevel = 8;
+
+// Merge radius for a camera path whose first rough vertex lies at path length `ell` from the lens, at
+// photon pass j (1-based); theta_pix: the angular width of one pixel at the image centre. Clamped below
+// at 1e-6 of the scene radius.
+inline float merge_radius(float theta_pix, float ell, uint32_t j, float scene_radius) {
+  const float r = kRadiusPixels * theta_pix * ell * std::pow(float(std::max(j, 1u)), (kRadiusAlpha - 1) / 2);
+  return std::max(r, 1e-6f * scene_radius);
+}
+
+struct ScheduleConfig {
+  uint64_t n_max = uint64_t(1) << 20;  // photon paths per pass at u = 1
+  uint64_t n_min = (uint64_t(1) << 20) / 64;
+  uint64_t probe = uint64_t(1) << 16;  // the first pass
+  uint64_t camera_paths = 1;           // camera paths per iteration (pixels)
+};
+
+class PhotonSchedule {
+ public:
+  PhotonSchedule() = default;
+  explicit PhotonSchedule(const ScheduleConfig &c) : cfg_(c) {}
+
+  // Photon paths to trace before the camera pass of `iteration` (0: none, keep the current map).
+  uint64_t plan(uint64_t iteration) const {
+    if (dormant_ || iteration < next_pass_) return 0;
+    if (passes_ == 0) return cfg_.probe;
+    if (idle_ > 0) return cfg_.n_min;
+    const double n = std::round(u_ * double(cfg_.n_max));
+    return uint64_t(std::clamp(n, double(cfg_.n_min), double(cfg_.n_max)));
+  }
+
+  // A photon pass of `paths` paths stored `stored` photons before the camera pass of `iteration`.
+  void pass_done(uint64_t iteration, uint64_t paths, uint64_t stored) {
+    ++passes_;
+    if (stored == 0) {
+      active_ = false;
+      back_off(iteration);
+      return;
+    }
+    active_ = true;
+    // Large passes serve several camera passes (photon : camera paths ~ 1 over time); small ones are
+    // redone every iteration.
+    const uint64_t k = paths >= cfg_.camera_paths
+                           ? std::max<uint64_t>(1, uint64_t(std::llround(double(paths) / double(cfg_.camera_paths))))
+                           : 1;
+    next_pass_ = iteration + k;
+  }
+
+  // After the camera pass of `iteration`: u = the useful-pixel ratio (meaningful when a map was active).
+  void iteration_done(uint64_t iteration, double u) {
+    if (!active_) return;
+    u_ = u;
+    if (u > 0) {
+      idle_ = 0;
+      return;
+    }
+    active_ = false;  // photons stored but useless: plain path tracing while backing off
+    back_off(iteration + 1);
+  }
+
+  // No photon path can ever be stored (no sharp surface met by photons or camera paths): stop planning
+  // until the camera reports one.
+  void set_dormant(bool d) { dormant_ = d; }
+  bool dormant() const { return dormant_; }
+
+  bool map_active() const { return active_; }
+  uint32_t passes() const { return passes_; }  // j of the current map
+  uint32_t idle_level() const { return idle_; }
+  uint64_t next_pass() const { return next_pass_; }
+  double useful_ratio() const { return u_; }
+  const ScheduleConfig &config() const { return cfg_; }
+
+ private:
+  // The next pass comes after 2^b iterations without photons, starting at `first_idle`.
+  void back_off(uint64_t first_idle) {
+    idle_ = std::min(idle_ + 1, kMaxIdleLevel);
+    next_pass_ = first_idle + (uint64_t(1) << idle_);
+  }
+
+  ScheduleConfig cfg_;
+  uint64_t next_pass_ = 1;
+  uint32_t passes_ = 0, idle_ = 0;
+  double u_ = 0;
+  bool active_ = false, dormant_ = false;
+};
+
+}  // namespace nimbus::caustics
