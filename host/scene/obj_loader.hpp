@@ -1,0 +1,18 @@
+// Wavefront OBJ files as one triangle mesh, through tinyobjloader.
+#pragma once
+
+#include <filesystem>
+
+#include "core/expected.hpp"
+#include "scene/scene_desc.hpp"
+
+namespace nimbus {
+
+// All groups and objects of the file merged into one mesh, in the file's coordinates; polygons are
+// fan-triangulated (OBJ faces are expected to be convex); `mtllib`/`usemtl` are ignored (the scene assigns
+// the material). Normals and uvs are kept only when every face corner has one, since MeshData stores them
+// per vertex. On failure the Error holds the reason only ("No such file or directory", "face 3 refers to
+// vertex 9 but the file has 4"); the caller adds the path and the scene location.
+Expected<MeshData> load_obj_mesh(const std::filesystem::path &path);
+
+}  // namespace nimbus

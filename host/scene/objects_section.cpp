@@ -1,0 +1,130 @@
+// `objects:` — a list of shapes with a material, an optional transform and optional emission. Transforms
+// are applied here, so every ShapeDesc leaves the parser in world space.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "scene/mesh_builders.hpp"
+#include "scene/sections.hpp"
+
+namespace nimbus::scene_yaml {
+
+namespace {
+
+const char *const kShapes = "sphere, rectangle, box, disk, mesh";
+
+// The keys every shape accepts plus those specific to it.
+std::vector<std::string_view> keys_with(std::initializer_list<std::string_view> specific) {
+  std::vector<std::string_view> keys{"shape", "material", "transform", "emission", "two_sided", "group"};
+  keys.insert(keys.end(), specific);
+  return keys;
+}
+
+uint32_t find_material(const YamlValue &v, const std::vector<MaterialDesc> &materials) {
+  const std::string name = v.nonempty_string();
+  std::vector<std::string_view> names;
+  for (size_t i = 0; i < materials.size(); ++i) {
+    if (materials[i].name == name) return uint32_t(i);
+    names.push_back(materials[i].name);
+  }
+  if (names.empty()) v.fail("unknown material '" + abbreviate(name) + "': the scene defines no materials");
+  v.fail("unknown material '" + abbreviate(name) + "'; defined: " + join_names(names));
+}
+
+std::vector<float> positive_sizes(const YamlValue &v, size_t n, std::string_view shape) {
+  std::vector<float> sizes;
+  for (const YamlValue &item : v.sequence_of(n, shape)) sizes.push_back(item.real(Range::greater_than(0)));
+  return sizes;
+}
+
+// Spheres and disks are kept analytic, so their transform may only rotate, translate, mirror and scale
+// uniformly; anything else would turn them into ellipsoids and ellipses.
+float uniform_scale(const Transform &t, const YamlValue &transform, std::string_view shape) {
+  if (const std::optional<float> s = similarity_scale(t)) return *s;
+  const Vec3f scales = t.axis_scales();
+  transform.fail(
+      "a " + std::string(shape) + " allows only rotation, translation and uniform scale (axis scales " +
+      format_number(scales.x) + ", " + format_number(scales.y) + ", " + format_number(scales.z) + ")");
+}
+
+ShapeDesc read_object(const YamlValue &object, const std::vector<MaterialDesc> &materials) {
+  const YamlMap m = object.map();
+  const YamlValue shape_value = m.require("shape");
+  const std::string shape = shape_value.string();
+  ShapeDesc s;
+  s.where = object.location();
+  if (shape == "sphere") {
+    s.type = ShapeType::Sphere;
+    m.check_keys(keys_with({"center", "radius"}), "a sphere");
+  } else if (shape == "rectangle") {
+    s.type = ShapeType::Rectangle;
+    m.check_keys(keys_with({"size"}), "a rectangle");
+  } else if (shape == "box") {
+    s.type = ShapeType::Box;
+    m.check_keys(keys_with({"size"}), "a box");
+  } else if (shape == "disk") {
+    s.type = ShapeType::Disk;
+    m.check_keys(keys_with({"radius"}), "a disk");
+  } else if (shape == "mesh") {
+    s.type = ShapeType::Mesh;
+    m.check_keys(keys_with({"file", "positions", "indices", "normals", "uvs"}), "a mesh");
+  } else {
+    shape_value.fail("unknown shape '" + abbreviate(shape) + "'; known: " + kShapes);
+  }
+
+  s.material = find_material(m.require("material"), materials);
+  if (auto v = m.get("emission"))
+    s.emission = v->map({"radiance"}).require("radiance").rgb(Range::at_least(0));
+  if (auto v = m.get("two_sided")) s.two_sided = v->boolean();
+  if (auto v = m.get("group")) s.group = v->string();
+
+  const std::optional<YamlValue> transform_value = m.get("transform");
+  const Transform transform = transform_value ? read_transform(*transform_value) : Transform();
+
+  switch (s.type) {
+    case ShapeType::Sphere:
+    case ShapeType::Disk: {
+      const Vec3f center =
+          s.type == ShapeType::Sphere && m.has("center") ? m.get("center")->vec3() : Vec3f(0.0f);
+      const float radius = m.require("radius").real(Range::greater_than(0));
+      const float scale = transform_value ? uniform_scale(transform, *transform_value, shape) : 1.0f;
+      s.center = transform.point(center);
+      s.radius = radius * scale;
+      if (s.type == ShapeType::Disk) s.normal = normalize(transform.normal({0, 0, 1}));
+      break;
+    }
+    case ShapeType::Rectangle: {
+      const std::vector<float> size = positive_sizes(m.require("size"), 2, "[width, height]");
+      s.mesh = rectangle_mesh(size[0], size[1]);
+      break;
+    }
+    case ShapeType::Box: {
+      const std::vector<float> size = positive_sizes(m.require("size"), 3, "[x, y, z]");
+      s.mesh = box_mesh({size[0], size[1], size[2]});
+      break;
+    }
+    case ShapeType::Mesh:
+      s.mesh = read_mesh(m);
+      break;
+  }
+
+  if (!s.mesh.positions.empty()) {
+    transform_mesh(s.mesh, transform);
+    for (const Vec3f &p : s.mesh.positions)
+      if (!is_finite(p)) (transform_value ? *transform_value : object).fail("vertex positions overflow");
+  }
+  if (!is_finite(s.center) || !std::isfinite(s.radius))
+    (transform_value ? *transform_value : object).fail("the transformed shape overflows");
+  return s;
+}
+
+}  // namespace
+
+std::vector<ShapeDesc> read_objects(const YamlValue &section, const std::vector<MaterialDesc> &materials) {
+  std::vector<ShapeDesc> out;
+  if (section.is_null()) return out;
+  for (const YamlValue &object : section.sequence()) out.push_back(read_object(object, materials));
+  return out;
+}
+
+}  // namespace nimbus::scene_yaml

@@ -1,0 +1,46 @@
+// Shared helpers for the scene parser tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scene/scene_parser.hpp"
+
+namespace nimbus::test {
+
+inline const std::string kFixtures = std::string(NIMBUS_SOURCE_DIR) + "/tests/scene/fixtures";
+
+// Parses inline YAML that must be valid; fails the test with the parser's message otherwise.
+inline SceneDesc parse_ok(const std::string &yaml) {
+  Expected<SceneDesc> scene = parse_scene_string(yaml, "test.yaml");
+  EXPECT_TRUE(scene.ok()) << scene.error().message;
+  return scene.ok() ? std::move(scene).value() : SceneDesc{};
+}
+
+// Checks that an error message is exactly one line, starts with "FILE:LINE:COLUMN: error: WHAT: " and
+// contains `contains`.
+inline ::testing::AssertionResult error_is(const Expected<SceneDesc> &result, const std::string &file,
+                                           int line, int column, const std::string &what,
+                                           const std::string &contains) {
+  if (result.ok()) return ::testing::AssertionFailure() << "parsed without error";
+  const std::string &message = result.error().message;
+  const std::string prefix =
+      file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": error: " + what + ": ";
+  if (message.rfind(prefix, 0) != 0)
+    return ::testing::AssertionFailure()
+           << "expected prefix \"" << prefix << "\"\n  got \"" << message << "\"";
+  if (message.find(contains) == std::string::npos)
+    return ::testing::AssertionFailure() << "expected \"" << contains << "\" in \"" << message << "\"";
+  if (message.find('\n') != std::string::npos)
+    return ::testing::AssertionFailure() << "message spans several lines: \"" << message << "\"";
+  return ::testing::AssertionSuccess() << message;
+}
+
+// Parses inline YAML as "test.yaml" and checks the error as above.
+inline ::testing::AssertionResult fails_at(const std::string &yaml, int line, int column,
+                                           const std::string &what, const std::string &contains = "") {
+  return error_is(parse_scene_string(yaml, "test.yaml"), "test.yaml", line, column, what, contains);
+}
+
+}  // namespace nimbus::test
