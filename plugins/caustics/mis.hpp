@@ -88,6 +88,7 @@ struct CameraMis {
   CameraTerm terms[kLookupRoughVertices];
   uint32_t n_terms = 0;
   uint32_t rough_count = 0;  // rough vertices among x_1 .. x_j (after append)
+  uint32_t d_photon = kPhotonMaxVertices;  // the photon tracer's D_photon (tests vary it)
 
   // Arrival at x_{j+1}: c_in = |cos| at it. Not called for escaped rays (infinite lights).
   void arrive(float c_in) {
@@ -126,7 +127,7 @@ struct CameraMis {
     float s = 0;
     for (uint32_t i = 0; i < n_terms; ++i) {
       const CameraTerm &t = terms[i];
-      if (t.has_sharp && !t.dead && k - t.s <= kPhotonMaxVertices) s += t.R;
+      if (t.has_sharp && !t.dead && k - t.s <= d_photon) s += t.R;
     }
     return s;
   }
@@ -134,7 +135,7 @@ struct CameraMis {
   bool eligible(uint32_t k) const {
     for (uint32_t i = 0; i < n_terms; ++i) {
       const CameraTerm &t = terms[i];
-      if (t.has_sharp && !t.dead && k - t.s <= kPhotonMaxVertices) return true;
+      if (t.has_sharp && !t.dead && k - t.s <= d_photon) return true;
     }
     return false;
   }
@@ -144,7 +145,7 @@ struct CameraMis {
     float s = 0;
     for (uint32_t i = 0; i < n_terms; ++i) {
       const CameraTerm &t = terms[i];
-      if (!t.dead && k - t.s <= kPhotonMaxVertices) s += t.R;
+      if (!t.dead && k - t.s <= d_photon) s += t.R;
     }
     return s;
   }

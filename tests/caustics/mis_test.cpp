@@ -1,0 +1,275 @@
+// MIS partition of unity (solver spec 10 ii): synthetic paths with random vertex classes, pdfs, cosines
+// and distances drive the production photon-side and camera-side state machines (mis.hpp) exactly as
+// the plugin does; every weight they give must equal the closed form q_t^2 / sum_u q_u^2 built from
+// explicit products of the area-measure pseudo-densities, and the weights must sum to one.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "mis.hpp"
+
+namespace nimbus::caustics {
+namespace {
+
+enum class VertexKind { Delta, SharpGlossy, Rough };
+enum class LightKind { Area, Point, Infinite, Directional };
+
+struct SyntheticPath {
+  uint32_t k = 0;                 // segments; x_0 lens, x_k emitter
+  std::vector<VertexKind> kind;   // x_1 .. x_{k-1} (index j)
+  std::vector<double> cos_prev;   // at x_j towards x_{j-1} (j = 1..k; x_k: cos_z for finite lights)
+  std::vector<double> cos_next;   // at x_j towards x_{j+1} (j = 0..k-1)
+  std::vector<double> d2;         // squared length of segment (x_j, x_{j+1}), j = 0..k-1
+  std::vector<double> w_cam;      // omega^C_j: pdf x_{j-1} -> x_j -> x_{j+1} (j = 1..k-1)
+  std::vector<double> w_light;    // omega^L_j: pdf x_{j+1} -> x_j -> x_{j-1}
+  LightKind light = LightKind::Area;
+  double lp = 1;                  // emitter product (0: the light emits no such photon)
+  double n_omega = 1;             // NEE solid-angle density incl. selection (area, infinite)
+  double pmf = 1;                 // NEE selection (delta lights)
+  double area = 1, neff = 1;      // pi r^2 and the photon path count
+  uint32_t d_photon = kPhotonMaxVertices;
+
+  bool finite() const { return light == LightKind::Area || light == LightKind::Point; }
+  bool hittable() const { return light == LightKind::Area || light == LightKind::Infinite; }
+  bool rough(uint32_t j) const { return kind[j] == VertexKind::Rough; }
+  bool delta(uint32_t j) const { return kind[j] == VertexKind::Delta; }
+  // Receiver geometry of the last segment: cos_{k-1} / d^2, or cos_{k-1} for infinite lights.
+  double g_last() const { return finite() ? cos_next[k - 1] / d2[k - 1] : cos_next[k - 1]; }
+  // NEE area density of x_k seen from x_{k-1}.
+  double nk() const {
+    switch (light) {
+      case LightKind::Area: return n_omega * cos_prev[k] / d2[k - 1];
+      case LightKind::Infinite: return n_omega;
+      default: return pmf;
+    }
+  }
+};
+
+double log_uniform(std::mt19937_64 &g, double lo, double hi) {
+  return std::exp(std::uniform_real_distribution<double>(std::log(lo), std::log(hi))(g));
+}
+
+SyntheticPath random_path(std::mt19937_64 &g) {
+  SyntheticPath p;
+  p.k = std::uniform_int_distribution<uint32_t>(2, 12)(g);
+  p.kind.assign(p.k, VertexKind::Rough);
+  p.cos_prev.assign(p.k + 1, 1);
+  p.cos_next.assign(p.k, 1);
+  p.d2.assign(p.k, 1);
+  p.w_cam.assign(p.k, 1);
+  p.w_light.assign(p.k, 1);
+  std::uniform_int_distribution<int> kind(0, 2), light(0, 3);
+  p.light = LightKind(light(g));
+  for (uint32_t j = 1; j < p.k; ++j) {
+    // Bias towards sharp vertices now and then so that long caustic chains occur.
+    p.kind[j] = VertexKind(kind(g));
+    if (p.kind[j] != VertexKind::Delta) {
+      p.w_cam[j] = log_uniform(g, 1e-3, 1e3);
+      p.w_light[j] = log_uniform(g, 1e-3, 1e3);
+    }
+  }
+  for (uint32_t j = 0; j <= p.k; ++j) {
+    if (j >= 1) p.cos_prev[j] = log_uniform(g, 1e-3, 1);
+    if (j < p.k) p.cos_next[j] = log_uniform(g, 1e-3, 1);
+    if (j < p.k) p.d2[j] = log_uniform(g, 1e-3, 1e3);
+  }
+  p.lp = std::uniform_real_distribution<double>(0, 1)(g) < 0.1 ? 0.0 : log_uniform(g, 1e-3, 1e3);
+  p.n_omega = log_uniform(g, 1e-3, 1e3);
+  p.pmf = log_uniform(g, 1e-3, 1);
+  p.area = log_uniform(g, 1e-3, 1e3);
+  p.neff = log_uniform(g, 1, 1e6);
+  p.d_photon = std::uniform_real_distribution<double>(0, 1)(g) < 0.3
+                   ? std::uniform_int_distribution<uint32_t>(2, 6)(g)
+                   : kPhotonMaxVertices;
+  return p;
+}
+
+// ---- closed form --------------------------------------------------------------------------------
+struct ClosedForm {
+  double qh = 0, qn = 0;
+  std::vector<double> qm;  // by s (0 where no technique)
+  double sum() const {
+    double s = qh * qh + qn * qn;
+    for (double q : qm) s += q * q;
+    return s;
+  }
+};
+
+// The merge at s is a technique (E1-E4 with n_max = 1).
+bool merge_eligible(const SyntheticPath &p, uint32_t s) {
+  if (!(p.lp > 0) || s < 1 || s + 2 > p.k || !p.rough(s)) return false;
+  uint32_t rough_before = 0;
+  for (uint32_t j = 1; j < s; ++j) rough_before += p.rough(j);
+  if (rough_before > 1) return false;
+  bool sharp = false;
+  for (uint32_t j = s + 1; j < p.k; ++j) {
+    sharp = sharp || !p.rough(j);
+    if (p.rough(j) && j + 1 < p.k && p.rough(j + 1)) return false;
+  }
+  return sharp && p.k - s <= p.d_photon;
+}
+
+ClosedForm closed_form(const SyntheticPath &p) {
+  const uint32_t k = p.k;
+  // C_j (j = 2..k) and L_j (j = 1..k-2); L_{k-1} L_k = lp * g.
+  std::vector<double> C(k + 1, 1), L(k + 1, 1);
+  for (uint32_t j = 2; j < k; ++j) C[j] = p.w_cam[j - 1] * p.cos_prev[j] / p.d2[j - 1];
+  C[k] = p.light == LightKind::Area ? p.w_cam[k - 1] * p.cos_prev[k] / p.d2[k - 1] : p.w_cam[k - 1];
+  for (uint32_t j = 1; j + 2 <= k; ++j) L[j] = p.w_light[j + 1] * p.cos_next[j] / p.d2[j];
+  const double light_pair = p.lp * p.g_last();
+  ClosedForm f;
+  double prod_c = 1;
+  for (uint32_t j = 2; j < k; ++j) prod_c *= C[j];
+  if (p.hittable()) f.qh = prod_c * C[k];
+  if (!p.delta(k - 1)) f.qn = prod_c * p.nk();
+  f.qm.assign(k + 1, 0);
+  for (uint32_t s = 1; s < k; ++s) {
+    if (!merge_eligible(p, s)) continue;
+    double q = p.area * p.neff;
+    for (uint32_t j = 2; j <= s; ++j) q *= C[j];
+    for (uint32_t j = s; j + 2 <= k; ++j) q *= L[j];
+    f.qm[s] = q * light_pair;
+  }
+  return f;
+}
+
+// ---- production state machines --------------------------------------------------------------------
+struct PhotonAt {
+  bool stored = false;
+  float A = 0, B = 0;
+  bool b_valid = false, prev_rough = false;
+};
+
+struct Weights {
+  double wh = 0, wn = 0;
+  std::vector<double> wm;
+  bool hit = false, nee = false;
+  std::vector<bool> merged;
+};
+
+Weights production(const SyntheticPath &p) {
+  const uint32_t k = p.k;
+  const float lp = float(p.lp);
+  // Photon side: from the emitter towards the camera, as trace_photon does.
+  std::vector<PhotonAt> at(k + 1);
+  PhotonMis pm;
+  pm.emit(p.hittable(), p.light == LightKind::Area ? float(p.cos_prev[k]) : 1.0f, lp);
+  bool had_sharp = false, prev_rough = false;
+  for (uint32_t j = k - 1; j >= 1; --j) {
+    const float c_in = float(p.cos_next[j]);
+    pm.arrive(c_in);
+    const bool rough = p.rough(j);
+    float E = 0;
+    if (j == k - 1 && !p.delta(j)) {
+      const float d2 = p.finite() ? float(p.d2[k - 1]) : 1.0f;
+      const float nk = float(p.nk());
+      E = photon_nee_term(true, nk, d2, lp, c_in);
+    }
+    const bool stored = rough && had_sharp && (k - j) <= p.d_photon;
+    at[j] = PhotonAt{stored, pm.A, pm.B, pm.b_valid, prev_rough};
+    if (rough && prev_rough) break;
+    pm.scatter(float(p.cos_prev[j]), float(p.w_light[j]), float(p.w_cam[j]), rough, stored, E);
+    prev_rough = rough;
+    had_sharp = had_sharp || !rough;
+  }
+  // Camera side, as trace_pixel<true> does.
+  Weights w;
+  w.wm.assign(k + 1, 0);
+  w.merged.assign(k + 1, false);
+  CameraMis cm;
+  cm.d_photon = p.d_photon;
+  const float a_r = mis(float(p.area));
+  const float neff = float(p.neff);
+  for (uint32_t j = 1; j <= k; ++j) {
+    if (j >= 2 && !(j == k && !p.finite()))
+      cm.arrive(j == k ? float(p.cos_prev[k]) : float(p.cos_prev[j]));
+    if (j == k) {
+      if (p.hittable()) {
+        const float nee_ratio = p.delta(k - 1) ? 0.0f : mis(float(p.n_omega / p.w_cam[k - 1]));
+        w.wh = hit_weight(nee_ratio, a_r, cm.s_cam(k), lp);
+        w.hit = true;
+      }
+      break;
+    }
+    const bool lookup = cm.append(p.rough(j));
+    if (lookup && at[j].stored && p.lp > 0) {
+      const PhotonAt &ph = at[j];
+      w.wm[j] = merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
+                             mis(float(p.area) * neff), mis(neff), mis(neff), cm.rough_count == 1, cm.gamma_sum(k));
+      w.merged[j] = true;
+    }
+    if (j == k - 1 && !p.delta(j)) {
+      const float hit_ratio = p.hittable() ? mis(float(p.w_cam[j] / p.n_omega)) : 0.0f;
+      w.wn = nee_weight(hit_ratio, a_r, float(p.w_light[j]), cm.s_cam(k), lp, float(p.g_last()), float(p.nk()));
+      w.nee = true;
+    }
+    cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, neff);
+  }
+  return w;
+}
+
+// Relative agreement, with an absolute floor for weights near zero.
+void expect_weight(double got, double want, const char *what, int path) {
+  EXPECT_NEAR(got, want, 2e-3 * std::max(want, 1e-2)) << what << " on path " << path;
+}
+
+TEST(CausticsMis, WeightsMatchClosedFormAndSumToOne) {
+  std::mt19937_64 g(20190704);
+  int paths_with_merges = 0, long_chains = 0;
+  for (int n = 0; n < 200000; ++n) {
+    const SyntheticPath p = random_path(g);
+    const ClosedForm f = closed_form(p);
+    const double total = f.sum();
+    if (!(total > 0) || !std::isfinite(total)) continue;
+    const Weights w = production(p);
+    double sum = 0;
+    if (w.hit) {
+      expect_weight(w.wh, f.qh * f.qh / total, "hit", n);
+      sum += w.wh;
+    } else {
+      EXPECT_EQ(f.qh, 0) << "hit technique missing on path " << n;
+    }
+    if (w.nee) {
+      expect_weight(w.wn, f.qn * f.qn / total, "nee", n);
+      sum += w.wn;
+    } else {
+      EXPECT_EQ(f.qn, 0) << "nee technique missing on path " << n;
+    }
+    bool any_merge = false;
+    for (uint32_t s = 1; s < p.k; ++s) {
+      // The production code merges exactly where the closed form has a technique.
+      EXPECT_EQ(w.merged[s], f.qm[s] > 0) << "merge eligibility at s = " << s << " on path " << n;
+      if (!w.merged[s]) continue;
+      any_merge = true;
+      expect_weight(w.wm[s], f.qm[s] * f.qm[s] / total, "merge", n);
+      sum += w.wm[s];
+    }
+    paths_with_merges += any_merge;
+    long_chains += any_merge && p.k >= 8;
+    EXPECT_NEAR(sum, 1.0, 1e-3) << "path " << n;
+    if (HasFailure()) return;
+  }
+  std::printf("paths with merge techniques: %d (k >= 8: %d)\n", paths_with_merges, long_chains);
+  EXPECT_GT(paths_with_merges, 10000);
+  EXPECT_GT(long_chains, 500);
+}
+
+// Without a photon map (a_r = 0) the hit and NEE weights are nimbus.pt's power heuristic.
+TEST(CausticsMis, NoMapGivesPathTracerWeights) {
+  std::mt19937_64 g(7);
+  for (int n = 0; n < 10000; ++n) {
+    const float bsdf = float(log_uniform(g, 1e-3, 1e3)), light = float(log_uniform(g, 1e-3, 1e3));
+    CameraMis cm;
+    const float wh = hit_weight(mis(light / bsdf), 0.0f, cm.s_cam(3), 1.0f);
+    const float wn = nee_weight(mis(bsdf / light), 0.0f, 1.0f, cm.s_cam(3), 1.0f, 1.0f, light);
+    const float ph = bsdf * bsdf / (bsdf * bsdf + light * light), pn = light * light / (bsdf * bsdf + light * light);
+    EXPECT_NEAR(wh, ph, 1e-6f * std::max(ph, 1e-6f) + 1e-7f);
+    EXPECT_NEAR(wn, pn, 1e-6f * std::max(pn, 1e-6f) + 1e-7f);
+  }
+}
+
+}  // namespace
+}  // namespace nimbus::caustics
