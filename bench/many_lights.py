@@ -24,7 +24,7 @@ def run(cmd):
 
 
 def meta(nimbus, exr):
-    """Iterations and seconds from the EXR header (via `nimbus compare` against itself)."""
+    """Iterations and seconds from the EXR header (oiiotool, from Debian's openimageio-tools)."""
     out = run(["oiiotool", "--info", "-v", exr])
     vals = {}
     for line in out.splitlines():
