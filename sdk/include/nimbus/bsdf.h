@@ -40,23 +40,24 @@ typedef struct nimbus_bsdf_sample {
 #define NIMBUS_SERVICE_BSDF "nimbus.host.bsdf"
 typedef struct nimbus_host_bsdf_v1 {
   uint32_t struct_size;
-  /* [render-thread] f (out) and the forward/reverse pdfs (out, may be NULL) of scattering wo -> wi.
+  /* [render-thread] f (out) and the forward/reverse pdfs pdf_fwd/pdf_rev (out, may be NULL) of wo -> wi.
    * Delta lobes contribute nothing here. ix, wo, wi borrowed. */
   void (*eval)(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float wo[3],
                const float wi[3], nimbus_transport_mode_t mode, float f[3], float *pdf_fwd, float *pdf_rev);
-  /* [render-thread] Samples wi given wo and three uniform numbers u. out is caller storage; on failure
-   * out->pdf = 0. */
+  /* [render-thread] Samples wi given wo and three uniform numbers u. ix, wo, u borrowed; out is caller
+   * storage, and out->pdf = 0 on failure. */
   void (*sample)(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float wo[3],
                  const float u[3], nimbus_transport_mode_t mode, nimbus_bsdf_sample_t *out);
-  /* [render-thread] Solid-angle pdf of sampling wi given wo (non-delta lobes only). */
+  /* [render-thread] Solid-angle pdf of sampling wi given wo (non-delta lobes only). ix, wo, wi borrowed. */
   float (*pdf)(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float wo[3],
                const float wi[3], nimbus_transport_mode_t mode);
-  /* [render-thread] Union of the lobes the material at ix has. */
+  /* [render-thread] Union of the lobes the material at ix (borrowed) has. */
   nimbus_lobe_t (*lobes)(const nimbus_host_t *host, const nimbus_interaction_t *ix);
   /* [render-thread] Minimum GGX alpha over the material's non-delta lobes (0 for delta-only materials,
-   * 1 for diffuse): how sharp its sharpest lobe is. */
+   * 1 for diffuse): how sharp its sharpest lobe is. ix borrowed. */
   float (*min_roughness)(const nimbus_host_t *host, const nimbus_interaction_t *ix);
-  /* [render-thread] Directional-hemispherical reflectance estimate (out rgb), for the albedo element. */
+  /* [render-thread] Directional-hemispherical reflectance rgb (out) at ix seen from wo (ix, wo borrowed),
+   * for the albedo element. */
   void (*albedo)(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float wo[3], float rgb[3]);
 } nimbus_host_bsdf_v1_t;
 

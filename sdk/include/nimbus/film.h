@@ -55,7 +55,7 @@ typedef struct nimbus_ext_lightmix_v1 {
   /* [render-thread] Adds rgb value (borrowed) to group `group`'s layer at pixel (x, y) of the tile. */
   void (*accumulate)(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx, uint32_t group, uint32_t x,
                      uint32_t y, const float value[3]);
-  /* [render-thread] Splat into group `group`'s layer (see film splat). */
+  /* [render-thread] Splats rgb value (borrowed) into group `group`'s layer (see film splat). */
   void (*splat)(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx, uint32_t group, float fx, float fy,
                 const float value[3]);
 } nimbus_ext_lightmix_v1_t;

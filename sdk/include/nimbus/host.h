@@ -45,7 +45,7 @@ typedef struct nimbus_host_memory_v1 {
   /* [any-thread] Host-owned block of `bytes`, aligned to `alignment` (power of two, <= 4096); NULL on
    * failure. Free with `free` of this table only. */
   void *(*alloc)(const nimbus_host_t *host, size_t bytes, size_t alignment);
-  /* [any-thread] Frees a block from `alloc`; NULL is ignored. */
+  /* [any-thread] Frees block (host-owned until this call; from `alloc` of this table); NULL is ignored. */
   void (*free)(const nimbus_host_t *host, void *block);
 } nimbus_host_memory_v1_t;
 
@@ -71,7 +71,8 @@ typedef struct nimbus_host_tasks_v1 {
   uint32_t struct_size;
   uint32_t reserved;
   /* [main-thread] Runs fn over [0, count) in chunks of at most `grain` items and returns when all are
-   * done. Chunk boundaries depend only on count and grain, never on the thread count. */
+   * done. Chunk boundaries depend only on count and grain, never on the thread count. user is borrowed:
+   * passed to every fn call unchanged, never dereferenced by the host. */
   nimbus_status_t (*parallel_for)(const nimbus_host_t *host, uint64_t count, uint64_t grain,
                                   nimbus_task_fn fn, void *user);
   /* [any-thread] Number of workers: the bound of nimbus_thread_ctx_t.worker_index. */

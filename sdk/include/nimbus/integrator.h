@@ -14,7 +14,7 @@
 extern "C" {
 #endif
 
-/* A scene option meant for the integrator, e.g. {"caustics", "on"}. Both strings host-owned until
+/* A scene option meant for the integrator, e.g. {"caustics", "on"}. key and value: host-owned until
  * end_render. */
 typedef struct nimbus_option {
   const char *key;
@@ -32,9 +32,9 @@ typedef struct nimbus_render_setup {
   /* The light sampler bound for this render (never NULL) and an optional guide (may be NULL). The
    * plugins and tables are host-owned until end_render; call them per the tags of their headers. */
   const nimbus_plugin_t *light_sampler;
-  const nimbus_light_sampler_v1_t *light_sampler_iface;
-  const nimbus_plugin_t *guide;
-  const nimbus_guiding_v1_t *guide_iface;
+  const nimbus_light_sampler_v1_t *light_sampler_iface; /* host-owned until end_render */
+  const nimbus_plugin_t *guide;                         /* host-owned until end_render; may be NULL */
+  const nimbus_guiding_v1_t *guide_iface;               /* host-owned until end_render; NULL without guide */
 } nimbus_render_setup_t;
 
 #define NIMBUS_S_TYPE_RENDER_INFO 65u

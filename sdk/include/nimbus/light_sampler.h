@@ -29,7 +29,8 @@ typedef struct nimbus_light_sampler_v1 {
   uint32_t (*pick)(const nimbus_plugin_t *plugin, const nimbus_interaction_t *ix, float u, float *pmf);
   /* [render-thread] Probability that pick at ix (borrowed) returns `light` (for MIS). */
   float (*pmf)(const nimbus_plugin_t *plugin, const nimbus_interaction_t *ix, uint32_t light);
-  /* [render-thread] Picks a light to emit a photon from, independent of any receiver. */
+  /* [render-thread] Picks a light to emit a photon from with u in [0,1), independent of any receiver;
+   * *pmf (out) its probability. */
   uint32_t (*pick_emitter)(const nimbus_plugin_t *plugin, float u, float *pmf);
   /* [render-thread] Optional (may be NULL): reports the contribution v of a sample of `light`. */
   void (*record)(const nimbus_plugin_t *plugin, const nimbus_thread_ctx_t *ctx, uint32_t light, float v);

@@ -62,21 +62,23 @@ typedef struct nimbus_host_lights_v1 {
   uint32_t (*count)(const nimbus_host_t *host);
   /* [any-thread] Fills info (out; caller sets header.struct_size) for light i. */
   nimbus_status_t (*info)(const nimbus_host_t *host, uint32_t light, nimbus_light_info_t *info);
-  /* [render-thread] Samples light `light` as seen from ix (borrowed) with u[2]. out caller storage. */
+  /* [render-thread] Samples light `light` as seen from ix with two uniform numbers u. ix, u borrowed;
+   * out caller storage. */
   void (*sample_incident)(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ix,
                           const float u[2], nimbus_light_incident_t *out);
   /* [render-thread] Solid-angle pdf that sample_incident from `ref` produces direction wi hitting the
    * light at `on_light` (borrowed; NULL for infinite lights). 0 for delta lights. */
   float (*pdf_incident)(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ref,
                         const float wi[3], const nimbus_interaction_t *on_light);
-  /* [render-thread] Radiance (out rgb) leaving an emissive surface point towards wo (borrowed). */
+  /* [render-thread] Radiance L (out, rgb) leaving the emissive surface point on_light towards wo.
+   * on_light, wo borrowed. */
   void (*eval_emitted)(const nimbus_host_t *host, const nimbus_interaction_t *on_light, const float wo[3],
                        float L[3]);
-  /* [render-thread] Radiance (out rgb) that infinite light `light` sends along -dir (dir: direction of
-   * the ray that escaped the scene). Zero for other lights. */
+  /* [render-thread] Radiance L (out, rgb) that infinite light `light` sends along -dir (dir borrowed: the
+   * direction of the ray that escaped the scene). Zero for other lights. */
   void (*eval_infinite)(const nimbus_host_t *host, uint32_t light, const float dir[3], float L[3]);
-  /* [render-thread] Samples a photon leaving `light` with u[4]. out caller storage; pdf_pos = 0 on
-   * failure. */
+  /* [render-thread] Samples a photon leaving `light` with four uniform numbers u (borrowed). out caller
+   * storage; out->pdf_pos = 0 on failure. */
   void (*sample_emission)(const nimbus_host_t *host, uint32_t light, const float u[4],
                           nimbus_light_emission_t *out);
 } nimbus_host_lights_v1_t;

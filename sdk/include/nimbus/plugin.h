@@ -65,7 +65,8 @@ typedef struct nimbus_entry {
   nimbus_status_t (*create)(const char *id, const struct nimbus_host *host, const nimbus_plugin_t **out);
 } nimbus_entry_t;
 
-/* The one symbol a plugin library exports. Returns static storage, never NULL. [main-thread] */
+/* The one symbol a plugin library exports. Returns its entry table (never NULL): static storage,
+ * plugin-owned for the life of the process (1.x hosts never unload a library). [main-thread] */
 typedef const nimbus_entry_t *(*nimbus_plugin_entry_fn)(void);
 #define NIMBUS_PLUGIN_ENTRY_SYMBOL "nimbus_plugin_entry"
 

@@ -89,7 +89,7 @@ typedef struct nimbus_host_camera_v1 {
    * the lens adds L * W to the pixel's mean; 0 when p does not project onto the image. */
   float (*connect)(const nimbus_host_t *host, const float p[3], const float lens_u[2], float raster[2],
                    float lens_point[3]);
-  /* [any-thread] Film position (out, raster pixels) of a camera sample of pixel (x, y) drawn with u
+  /* [any-thread] Film position (film: out, raster pixels) of a camera sample of pixel (x, y) drawn with u
    * (borrowed, 2 numbers) from the scene's pixel filter; returns the sample's weight (multiply the
    * sample's radiance by it). The position always lies in pixel (x, y)'s filter support, and the
    * sample is accumulated into pixel (x, y). */

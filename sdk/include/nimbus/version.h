@@ -3,9 +3,15 @@
  * Conventions (sdk-idioms.md):
  * - C only across the boundary; enumerations travel as fixed-width integers.
  * - Every pointer is tagged: `borrowed` (valid during the call only; default for const inputs),
- *   `out` (caller storage), `host-owned until <event>`, `plugin-owned until <event>`.
- * - Every function pointer is tagged with the thread it may be called on:
- *   [main-thread], [render-thread], [any-thread]. */
+ *   `out` or `caller storage` (the callee writes into the caller's memory), `host-owned until <event>`,
+ *   `plugin-owned until <event>`. A parameter's tag follows its name in the same clause of the
+ *   function's comment ("ix, wo borrowed; out caller storage"); a member's tag is in its own comment.
+ * - Receivers are borrowed without saying so: a `const nimbus_host_t *`, `const nimbus_plugin_t *` or
+ *   `const nimbus_thread_ctx_t *` parameter is the host, plugin instance or worker context the call is
+ *   made on or for, valid during the call (longer only where a comment says so).
+ * - Every function pointer is tagged with the thread it may be called on: [main-thread],
+ *   [render-thread] or [any-thread], possibly narrowed, e.g. [main-thread, !rendering].
+ * tests/abi/lint_sdk_headers.py enforces both tags; its docstring states the rule exactly. */
 #ifndef NIMBUS_VERSION_H
 #define NIMBUS_VERSION_H
 
