@@ -14,6 +14,8 @@ inline constexpr int kExitInterrupted = 130;
 
 int render_command(const std::vector<std::string> &args);
 int plugins_command(const std::vector<std::string> &args);
+int lightmix_command(const std::vector<std::string> &args);
+int compare_command(const std::vector<std::string> &args);
 
 // Absolute path of the running executable (for plugin and data discovery).
 std::string executable_path();

@@ -14,6 +14,8 @@ constexpr const char *kUsage =
     "commands:\n"
     "  render SCENE.yaml   render a scene to a multi-layer EXR and a PNG preview\n"
     "  plugins             list the plugins found, with their status\n"
+    "  lightmix IN.exr     relight a LightMix render: --set GROUP=SCALE[,R,G,B] ... -o OUT.exr\n"
+    "  compare TEST REF    error metrics (RMSE, relMSE, MAPE) of an EXR against a reference\n"
     "\n"
     "  nimbus --version    print the version\n"
     "  nimbus <command> --help   help on a command\n";
@@ -38,6 +40,8 @@ int main(int argc, char **argv) {
   }
   if (cmd == "render") return render_command(args);
   if (cmd == "plugins") return plugins_command(args);
+  if (cmd == "lightmix") return lightmix_command(args);
+  if (cmd == "compare") return compare_command(args);
   std::fprintf(stderr, "nimbus: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
   return kExitUsage;
 }

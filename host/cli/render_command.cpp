@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <charconv>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -38,8 +39,16 @@ constexpr const char *kHelp =
     "  --light-sampler ID     light sampler plugin (default: nimbus.lights.tree above 8 lights,\n"
     "                         nimbus.lights.power otherwise)\n"
     "  -q, --quiet            no progress output\n"
+    "  --checkpoint PATH      checkpoint file (default: OUT.exr.ckpt)\n"
+    "  --checkpoint-every S   seconds between checkpoints (default 300; 0: only when the render stops)\n"
+    "  --resume               continue from the checkpoint; --iterations is then the total, old + new\n"
     "\n"
-    "Ctrl-C stops after the current iteration and writes the image so far (exit code 130).\n";
+    "Ctrl-C stops after the current iteration and writes the image so far (exit code 130).\n"
+    "\n"
+    "Checkpoints hold the exact sums of every element: the render writes one every --checkpoint-every\n"
+    "seconds and whenever it stops (finished, time budget, Ctrl-C), and keeps it, so an interrupted or\n"
+    "finished render continues with --resume (same scene, seed, integrator and elements) and ends bit for\n"
+    "bit where an uninterrupted render of the same total iterations would.\n";
 
 std::atomic<bool> g_cancel{false};
 
@@ -113,6 +122,16 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
     } else if (k == "--integrator") {
       if (!value(v) || v.empty()) return "--integrator: expected a plugin id";
       a.integrator = v;
+    } else if (k == "--checkpoint") {
+      if (!value(v) || v.empty()) return "--checkpoint: expected a file name";
+      a.options.checkpoint_path = v;
+    } else if (k == "--checkpoint-every") {
+      double t = 0;
+      if (!value(v) || !parse_number(v, t) || !(t >= 0) || !std::isfinite(t))
+        return "--checkpoint-every: expected a non-negative number of seconds, got '" + v + "'";
+      a.options.checkpoint_interval_seconds = t;
+    } else if (k == "--resume") {
+      a.options.resume = true;
     } else if (!k.empty() && k[0] == '-') {
       return "unknown option '" + k + "'";
     } else if (a.scene.empty()) {
@@ -185,6 +204,10 @@ int render_command(const std::vector<std::string> &argv) {
   if (!a.quiet)
     std::fprintf(stderr, "nimbus: %llu iterations in %.2f s -> %s, %s%s\n", (unsigned long long)r.iterations, r.seconds,
                  r.exr_path.c_str(), r.png_path.c_str(), r.cancelled ? " (interrupted)" : "");
+  if (!a.quiet && r.resumed_from)
+    std::fprintf(stderr, "nimbus: resumed from iteration %llu\n", (unsigned long long)r.resumed_from);
+  if (!a.quiet && !r.checkpoint_path.empty())
+    std::fprintf(stderr, "nimbus: checkpoint %s (continue with --resume)\n", r.checkpoint_path.c_str());
   if (r.nonfinite_samples)
     std::fprintf(stderr, "nimbus: warning: %llu samples were NaN or infinite and were discarded\n",
                  (unsigned long long)r.nonfinite_samples);

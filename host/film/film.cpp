@@ -163,6 +163,25 @@ void Film::merge_splats() {
   }
 }
 
+bool Film::has_pending_splats() const {
+  for (const Element &e : elements_) {
+    for (const WorkerSplats &w : e.workers) {
+      if (w.dirty) return true;
+    }
+  }
+  return false;
+}
+
+std::span<const double> Film::sums(int32_t el) const {
+  if (!is_active(el)) return {};
+  return elements_[el].sum;
+}
+
+std::span<double> Film::sums(int32_t el) {
+  if (!is_active(el)) return {};
+  return elements_[el].sum;
+}
+
 std::vector<float> Film::resolve(int32_t el) const {
   if (!is_active(el)) return {};
   const Element &e = elements_[el];

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -76,6 +77,16 @@ class Film {
   void end_iteration() { ++iterations_; }
   uint64_t iterations() const { return iterations_; }
   void set_iterations(uint64_t n) { iterations_ = n; }
+  // Splats not yet folded into the sums: a checkpoint taken now would lose them.
+  bool has_pending_splats() const;
+
+  // ---- checkpoints (main thread, between iterations) ----------------------------------------------
+  // The running double sums of element `el` (width * height * channels, channel-interleaved; empty when
+  // inactive). A checkpoint saves and restores them bit for bit, so a resumed render adds its samples
+  // to exactly the values an uninterrupted one would have.
+  std::span<const double> sums(int32_t el) const;
+  std::span<double> sums(int32_t el);
+  void set_nonfinite_count(uint64_t n) { nonfinite_.store(n, std::memory_order_relaxed); }
 
   // Channel-interleaved image of element `el` (width * height * channels floats), sums / N; zeros
   // before the first iteration, empty for an inactive element.
@@ -117,6 +128,23 @@ class Film {
   std::vector<std::string> requested_;
   std::atomic<uint64_t> nonfinite_{0};
 };
+
+// The writers behind Film::write_exr and Film::write_png, for images that do not live in a film
+// (`nimbus lightmix` rewrites an EXR it read). One layer's channels, interleaved, width * height pixels.
+struct ExrLayer {
+  std::vector<std::string> channel_names;  // full names: "R", "G", "B" for beauty, "albedo.R", "depth.Y"
+  const float *pixels = nullptr;
+};
+// One multi-layer float EXR as Film::write_exr describes (compression, metadata keys and types), written
+// atomically.
+Status write_layered_exr(const std::string &path, uint32_t width, uint32_t height,
+                         const std::vector<ExrLayer> &layers,
+                         const std::vector<std::pair<std::string, std::string>> &string_meta,
+                         const std::vector<std::pair<std::string, double>> &numeric_meta);
+// Scene-linear RGB (width * height, interleaved) through the OCIO display transform to an 8-bit PNG,
+// written atomically, as Film::write_png.
+Status write_display_png(const std::string &path, std::vector<float> rgb, uint32_t width, uint32_t height,
+                         const std::string &ocio_config_path);
 
 // The OCIO config used for PNG output, in order: $NIMBUS_OCIO_CONFIG if set; the install or build
 // layout `<dir of the executable>/../share/nimbus/ocio/config.ocio` if it exists; the source tree's

@@ -1,4 +1,4 @@
-// Film::write_exr: every active element in one multi-layer EXR.
+// Film::write_exr: every active element in one multi-layer EXR; write_layered_exr: any layers, as one.
 #include <OpenImageIO/imageio.h>
 
 #include <climits>
@@ -35,28 +35,40 @@ Status Film::write_exr(const std::string &path,
                        const std::vector<std::pair<std::string, std::string>> &string_meta,
                        const std::vector<std::pair<std::string, double>> &numeric_meta) const {
   const std::vector<int32_t> ids = active_elements();
-  std::vector<std::string> names;
+  std::vector<std::vector<float>> images;
+  std::vector<ExrLayer> layers;
+  images.reserve(ids.size());
   for (int32_t id : ids) {
-    for (std::string &n : channel_names(id == kBeauty ? "" : element_name(id), element_channels(id))) {
-      names.push_back(std::move(n));
-    }
+    images.push_back(resolve(id));
+    layers.push_back(
+        {channel_names(id == kBeauty ? "" : element_name(id), element_channels(id)), images.back().data()});
   }
-  const size_t total = names.size();
+  return write_layered_exr(path, width_, height_, layers, string_meta, numeric_meta);
+}
 
-  // Interleave all elements into one float buffer: float, not half, because half saturates at 65504
+Status write_layered_exr(const std::string &path, uint32_t width, uint32_t height,
+                         const std::vector<ExrLayer> &layers,
+                         const std::vector<std::pair<std::string, std::string>> &string_meta,
+                         const std::vector<std::pair<std::string, double>> &numeric_meta) {
+  std::vector<std::string> names;
+  for (const ExrLayer &layer : layers)
+    names.insert(names.end(), layer.channel_names.begin(), layer.channel_names.end());
+  const size_t total = names.size();
+  const size_t pixel_count = size_t(width) * height;
+
+  // Interleave all layers into one float buffer: float, not half, because half saturates at 65504
   // and caustic highlights exceed that.
-  std::vector<float> pixels(pixel_count() * total);
+  std::vector<float> pixels(pixel_count * total);
   size_t first = 0;
-  for (int32_t id : ids) {
-    const std::vector<float> image = resolve(id);
-    const uint32_t c = element_channels(id);
-    for (size_t p = 0; p < pixel_count(); ++p) {
-      for (uint32_t k = 0; k < c; ++k) pixels[p * total + first + k] = image[p * c + k];
+  for (const ExrLayer &layer : layers) {
+    const size_t c = layer.channel_names.size();
+    for (size_t p = 0; p < pixel_count; ++p) {
+      for (size_t k = 0; k < c; ++k) pixels[p * total + first + k] = layer.pixels[p * c + k];
     }
     first += c;
   }
 
-  OIIO::ImageSpec spec(static_cast<int>(width_), static_cast<int>(height_), static_cast<int>(total),
+  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), static_cast<int>(total),
                        OIIO::TypeDesc::FLOAT);
   spec.channelnames = names;
   spec.alpha_channel = -1;

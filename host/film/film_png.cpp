@@ -1,4 +1,4 @@
-// Film::write_png: the beauty as a display-referred 8-bit preview.
+// Film::write_png: the beauty as a display-referred 8-bit preview; write_display_png: any RGB image, as one.
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -13,9 +13,13 @@
 namespace nimbus {
 
 Status Film::write_png(const std::string &path, const std::string &ocio_config_path) const {
-  std::vector<float> rgb = resolve(kBeauty);
+  return write_display_png(path, resolve(kBeauty), width_, height_, ocio_config_path);
+}
+
+Status write_display_png(const std::string &path, std::vector<float> rgb, uint32_t width, uint32_t height,
+                         const std::string &ocio_config_path) {
   // Fail before touching the destination: a bad config must not cost the user an existing preview.
-  if (Status shown = apply_display_transform(ocio_config_path, rgb, width_, height_); !shown) return shown;
+  if (Status shown = apply_display_transform(ocio_config_path, rgb, width, height); !shown) return shown;
 
   std::vector<uint8_t> bytes(rgb.size());
   for (size_t i = 0; i < rgb.size(); ++i) {
@@ -23,7 +27,7 @@ Status Film::write_png(const std::string &path, const std::string &ocio_config_p
     const float v = std::isnan(rgb[i]) ? 0.0f : std::clamp(rgb[i], 0.0f, 1.0f);
     bytes[i] = static_cast<uint8_t>(std::lround(v * 255.0f));
   }
-  OIIO::ImageSpec spec(static_cast<int>(width_), static_cast<int>(height_), 3, OIIO::TypeDesc::UINT8);
+  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 3, OIIO::TypeDesc::UINT8);
   spec.attribute("Software", "Nimbus " NIMBUS_VERSION_STRING);
   return write_atomically(
       path, [&](const std::string &tmp) { return write_oiio_image("png", tmp, spec, bytes.data()); });

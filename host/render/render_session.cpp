@@ -5,10 +5,14 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
 
 #include <tbb/parallel_for.h>
 
 #include "abi/host_services.hpp"
+#include "film/checkpoint.hpp"
 #include "render/plugin_registry.hpp"
 #include "render/render_context.hpp"
 
@@ -69,6 +73,33 @@ std::string png_path_for(const std::string &exr) {
   std::filesystem::path p(exr);
   p.replace_extension(".png");
   return p.string();
+}
+
+// What the film's sums depend on, one "key=value" per line; a checkpoint resumes only into a render with
+// the same lines (read_checkpoint names those that differ). The scene file is hashed whole, so any edit
+// to it counts; the files it references (meshes, maps) are not hashed. The other lines catch what the
+// CLI can override without editing the file.
+std::string render_fingerprint(const SceneDesc &desc, const RenderOptions &options,
+                               const std::string &integrator, const std::string &sampler) {
+  std::string scene_hash = "none";
+  if (std::ifstream in(desc.path, std::ios::binary); in)
+    scene_hash = content_hash(std::string(std::istreambuf_iterator<char>(in), {}));
+  std::set<std::string> elements(desc.render.elements.begin(), desc.render.elements.end());
+  elements.insert(options.elements.begin(), options.elements.end());
+  std::string element_list, option_list;
+  for (const std::string &e : elements) element_list += (element_list.empty() ? "" : ",") + e;
+  for (const auto &[k, v] : desc.render.options)
+    option_list += (option_list.empty() ? "" : ",") + k + ":" + v;
+  const uint32_t *r = desc.render.region;
+  std::string lines = "scene_hash=" + scene_hash;
+  lines += "\nresolution=" + std::to_string(desc.render.width) + "x" + std::to_string(desc.render.height);
+  lines += "\nregion=" + std::to_string(r[0]) + "," + std::to_string(r[1]) + "," + std::to_string(r[2]) +
+           "," + std::to_string(r[3]);
+  lines += "\nseed=" + std::to_string(desc.render.seed);
+  lines += "\nintegrator=" + integrator + "\nlight_sampler=" + sampler + "\nfilter=" + desc.render.filter;
+  lines += "\nmax_depth=" + std::to_string(desc.render.max_depth);
+  lines += "\noptions=" + option_list + "\nelements=" + element_list + "\n";
+  return lines;
 }
 
 std::string status_text(nimbus_status_t s) {
@@ -174,6 +205,26 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   if (Status s = film.allocate(); !s) return s.error();
   film.set_worker_count(ctx.worker_count);
 
+  // Checkpoint: restore the sums before the first iteration, or warn before replacing someone's work.
+  const std::string checkpoint_path =
+      options.checkpoint_path.empty() ? options.output_exr + ".ckpt" : options.checkpoint_path;
+  CheckpointInfo checkpoint;
+  checkpoint.seed = desc->render.seed;
+  checkpoint.integrator = integrator_id;
+  checkpoint.fingerprint = render_fingerprint(*desc, options, integrator_id, sampler.plugin->desc->id);
+  if (options.resume) {
+    if (Status s = read_checkpoint(film, checkpoint_path, checkpoint); !s)
+      return Error{"cannot resume: " + s.error().message};
+  } else if (std::error_code ec; std::filesystem::exists(checkpoint_path, ec) && message) {
+    const auto old = peek_checkpoint(checkpoint_path);
+    const std::string held = old ? " (" + std::to_string(old->iterations) + " iterations)" : "";
+    message(NIMBUS_LOG_WARNING,
+            "checkpoint '" + checkpoint_path + "'" + held +
+                " will be replaced by this render's; to continue it instead, stop now and "
+                "rerun with --resume");
+  }
+  const double previous_seconds = checkpoint.seconds;
+
   const uint64_t iterations = options.iterations   ? *options.iterations
                               : desc->render.iterations ? desc->render.iterations
                               : (options.time_seconds || desc->render.time_seconds > 0) ? 0
@@ -183,7 +234,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   nimbus_render_info_t info{};
   info.header = {sizeof(info), NIMBUS_S_TYPE_RENDER_INFO, nullptr};
   info.worker_count = ctx.worker_count;
-  info.first_iteration = 1;
+  info.first_iteration = film.iterations() + 1;
   info.planned_iterations = iterations;
   if (nimbus_status_t s = it.begin_render(integrator.plugin, &info); s != NIMBUS_OK)
     return Error{"integrator '" + integrator_id + "' failed to begin the render: " + status_text(s)};
@@ -197,13 +248,31 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   const auto t0 = Clock::now();
   nimbus_status_t failure = NIMBUS_OK;
   std::string failure_hook;
-  uint64_t done = 0;
+  const uint64_t resumed_from = film.iterations();
+  uint64_t done = resumed_from;
+  // Iterations the checkpoint on disk holds from this render (or the one resumed).
+  uint64_t saved = resumed_from;
+  std::string saved_path = options.resume ? checkpoint_path : "";
+  auto save_checkpoint = [&]() -> Status {
+    checkpoint.seconds = previous_seconds + seconds_since(t0);
+    Status s = write_checkpoint(film, checkpoint_path, checkpoint);
+    if (s) saved = done, saved_path = checkpoint_path;
+    return s;
+  };
+  auto last_save = t0;
   while (!cancel.load()) {
     if (iterations && done >= iterations) break;
-    if (budget > 0 && done > 0) {
-      // Stop when another iteration would overrun the budget (estimated from the mean so far).
+    if (budget > 0 && done > resumed_from) {
+      // Stop when another iteration would overrun the budget (estimated from this session's mean).
       const double elapsed = seconds_since(t0);
-      if (elapsed + elapsed / double(done) > budget) break;
+      if (elapsed + elapsed / double(done - resumed_from) > budget) break;
+    }
+    // Between iterations the sums are complete (splats merged): the only safe moment to save them.
+    if (options.checkpoint_interval_seconds > 0 && done > saved &&
+        seconds_since(last_save) >= options.checkpoint_interval_seconds) {
+      // A failed periodic checkpoint costs only protection, not the render: warn and carry on.
+      if (Status s = save_checkpoint(); !s && message) message(NIMBUS_LOG_WARNING, s.error().message);
+      last_save = Clock::now();
     }
     const uint64_t i = done + 1;
     if (nimbus_status_t s = it.begin_iteration(integrator.plugin, i); s != NIMBUS_OK) {
@@ -241,7 +310,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       p.total_iterations = iterations;
       p.elapsed_seconds = seconds_since(t0);
       p.time_budget = budget;
-      p.samples_per_second = double(w) * h * done / std::max(p.elapsed_seconds, 1e-9);
+      p.samples_per_second = double(w) * h * (done - resumed_from) / std::max(p.elapsed_seconds, 1e-9);
       std::lock_guard lock(ctx.phase_mutex);
       p.phase = ctx.phase;
       progress(p);
@@ -251,13 +320,19 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   const bool was_cancelled = cancel.load();
   it.end_render(integrator.plugin, failure != NIMBUS_OK ? failure : (was_cancelled ? NIMBUS_E_CANCELLED : NIMBUS_OK));
 
-  // Write what we have, whatever ended the loop.
+  // Write what we have, whatever ended the loop. The checkpoint goes first, so that an image write that
+  // fails still leaves a way to recover the render; after a plugin failure the sums hold a partial
+  // iteration, so the last periodic checkpoint is kept instead.
+  Status checkpointed = Ok{};
+  if (failure == NIMBUS_OK && done > saved) checkpointed = save_checkpoint();
   RenderResult result;
   result.iterations = done;
   result.seconds = seconds;
   result.cancelled = was_cancelled;
   result.nonfinite_samples = film.nonfinite_count();
   result.rays = ctx.rays_traced();
+  result.resumed_from = options.resume ? resumed_from : 0;
+  result.checkpoint_path = saved_path;
   result.exr_path = options.output_exr;
   result.png_path = png_path_for(options.output_exr);
   std::vector<std::pair<std::string, std::string>> smeta = {
@@ -267,11 +342,13 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       {"scene", desc->path},
       {"seed", std::to_string(desc->render.seed)},  // exact for any 64-bit seed
       {"stopped_by", failure != NIMBUS_OK ? "error" : was_cancelled ? "cancel" : (iterations && done >= iterations) ? "iterations" : "time"}};
+  // "seconds" is the render time of all the iterations in the image, over every resumed session.
   std::vector<std::pair<std::string, double>> nmeta = {{"iterations", double(done)},
-                                                       {"seconds", seconds},
+                                                       {"seconds", previous_seconds + seconds},
                                                        {"threads", double(ctx.worker_count)},
                                                        {"nonfinite_samples", double(film.nonfinite_count())},
                                                        {"rays", double(result.rays)}};
+  if (options.resume) nmeta.push_back({"resumed_from", double(resumed_from)});
   {
     std::lock_guard lock(ctx.stats_mutex);
     for (const auto &[k, v] : ctx.stats) nmeta.push_back({"stat:" + k, v});
@@ -279,6 +356,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   if (Status s = film.write_exr(result.exr_path, smeta, nmeta); !s) return s.error();
   const std::string ocio = options.ocio_config.empty() ? default_ocio_config_path() : options.ocio_config;
   if (Status s = film.write_png(result.png_path, ocio); !s) return s.error();
+  if (!checkpointed)
+    return Error{checkpointed.error().message + " (the image was written to " + result.exr_path + ")"};
   if (failure != NIMBUS_OK)
     return Error{"integrator '" + integrator_id + "' failed in " + failure_hook + " (" + status_text(failure) +
                  "); the image so far (" + std::to_string(done) + " iterations) was written to " + result.exr_path};

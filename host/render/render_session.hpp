@@ -27,6 +27,15 @@ struct RenderOptions {
   std::string ocio_config;             // empty = default lookup
   // Empty: nimbus.lights.tree above kTreeLightThreshold lights, nimbus.lights.power otherwise.
   std::string light_sampler;
+  // Checkpoints (film/checkpoint.hpp): written between iterations every checkpoint_interval_seconds (<= 0:
+  // none on the way) and whenever the loop stops, and kept after the final image so that a finished
+  // render can be extended. Empty path: `<output_exr>.ckpt`.
+  std::string checkpoint_path;
+  double checkpoint_interval_seconds = 300;
+  // Continue from the checkpoint instead of starting afresh. `iterations` then counts the total, so a
+  // render of 3 resumed with iterations = 6 renders iterations 4 to 6 and equals, bit for bit, a render
+  // of 6. A checkpoint already holding that many iterations just rewrites the output files.
+  bool resume = false;
 };
 
 // Scenes with more lights than this get the many-light tree by default.
@@ -47,7 +56,9 @@ struct RenderResult {
   bool cancelled = false;
   uint64_t nonfinite_samples = 0;
   uint64_t rays = 0;  // closest-hit and shadow rays traced
+  uint64_t resumed_from = 0;  // iterations the checkpoint held when resuming, else 0
   std::string exr_path, png_path;
+  std::string checkpoint_path;  // empty when no checkpoint was written
 };
 
 using ProgressFn = std::function<void(const RenderProgress &)>;
@@ -57,6 +68,7 @@ using MessageFn = std::function<void(int level, const std::string &line)>;
 // Renders `desc`. `cancel` is polled between iterations (and by plugins); when it becomes true the
 // current iteration finishes and the files are written. Errors name what failed; if the render
 // started, the film is written before an error is returned.
+// Warnings (e.g. an existing checkpoint about to be replaced) go to `message`.
 Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &options, PluginRegistry &registry,
                               std::atomic<bool> &cancel, const ProgressFn &progress, const MessageFn &message);
 

@@ -1,0 +1,436 @@
+#include "film/checkpoint.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "core/hash.hpp"
+#include "film/atomic_file.hpp"
+
+namespace nimbus {
+namespace {
+
+constexpr std::array<char, 8> kMagic = {'N', 'I', 'M', 'B', 'U', 'S', 'C', 'K'};
+// Bounds that no real checkpoint reaches, checked before allocating, so a corrupted length field is
+// reported as such instead of attempting a huge allocation.
+constexpr uint32_t kMaxStringBytes = 1u << 20;
+constexpr uint32_t kMaxElements = 1u << 16;
+
+void store_le(uint8_t *p, uint64_t v, int bytes) {
+  for (int i = 0; i < bytes; ++i) p[i] = static_cast<uint8_t>(v >> (8 * i));
+}
+uint64_t load_le(const uint8_t *p, int bytes) {
+  uint64_t v = 0;
+  for (int i = 0; i < bytes; ++i) v |= uint64_t(p[i]) << (8 * i);
+  return v;
+}
+
+// A 64-bit checksum over the byte stream, fed in pieces of any size: little-endian 8-byte words chained
+// through the splitmix64 finaliser (bijective, so any single changed word changes the result), the zero-
+// padded tail and the length last, so truncation and appended bytes change it too.
+class Checksum {
+ public:
+  void update(const uint8_t *p, size_t n) {
+    length_ += n;
+    while (n > 0) {
+      if (fill_ == 0) {
+        for (; n >= 8; p += 8, n -= 8) word(load_le(p, 8));
+        if (n == 0) break;
+      }
+      pending_[fill_++] = *p++;
+      --n;
+      if (fill_ == 8) {
+        word(load_le(pending_.data(), 8));
+        fill_ = 0;
+      }
+    }
+  }
+  uint64_t value() const {
+    Checksum c = *this;
+    if (c.fill_ > 0) {
+      std::fill(c.pending_.begin() + c.fill_, c.pending_.end(), uint8_t(0));
+      c.word(load_le(c.pending_.data(), 8));
+    }
+    return mix64(c.h_ ^ c.length_);
+  }
+
+ private:
+  void word(uint64_t w) { h_ = mix64(h_ ^ w); }
+
+  uint64_t h_ = 0x4e494d4255534b31ULL, length_ = 0;
+  std::array<uint8_t, 8> pending_{};
+  size_t fill_ = 0;
+};
+
+struct FileCloser {
+  void operator()(std::FILE *f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+// ---- writing ---------------------------------------------------------------------------------------
+
+class Writer {
+ public:
+  explicit Writer(std::FILE *f) : f_(f) {}
+
+  void bytes(const void *data, size_t n) {
+    sum_.update(static_cast<const uint8_t *>(data), n);
+    if (ok_ && std::fwrite(data, 1, n, f_) != n) ok_ = false;
+  }
+  void u32(uint32_t v) { fixed(v, 4); }
+  void u64(uint64_t v) { fixed(v, 8); }
+  void f64(double v) { fixed(std::bit_cast<uint64_t>(v), 8); }
+  void str(const std::string &s) {
+    u32(static_cast<uint32_t>(s.size()));
+    bytes(s.data(), s.size());
+  }
+  // Staged through a byte buffer so the encoding is little-endian whatever the host's byte order.
+  void doubles(std::span<const double> values) {
+    constexpr size_t kBatch = 8192;
+    std::vector<uint8_t> buffer(std::min(values.size(), kBatch) * 8);
+    for (size_t first = 0; first < values.size(); first += kBatch) {
+      const size_t n = std::min(kBatch, values.size() - first);
+      for (size_t i = 0; i < n; ++i) store_le(&buffer[i * 8], std::bit_cast<uint64_t>(values[first + i]), 8);
+      bytes(buffer.data(), n * 8);
+    }
+  }
+  // The checksum itself is not part of what it sums.
+  void finish() {
+    uint8_t b[8];
+    store_le(b, sum_.value(), 8);
+    if (ok_ && std::fwrite(b, 1, 8, f_) != 8) ok_ = false;
+  }
+  bool ok() const { return ok_; }
+
+ private:
+  void fixed(uint64_t v, int n) {
+    uint8_t b[8];
+    store_le(b, v, n);
+    bytes(b, size_t(n));
+  }
+
+  std::FILE *f_;
+  Checksum sum_;
+  bool ok_ = true;
+};
+
+// ---- reading ---------------------------------------------------------------------------------------
+
+struct StoredElement {
+  std::string name;
+  uint32_t channels = 0;
+  std::vector<double> sums;
+};
+
+struct Stored {
+  uint32_t width = 0, height = 0;
+  uint64_t nonfinite = 0;
+  CheckpointInfo info;
+  std::vector<StoredElement> elements;
+};
+
+// Reads the file front to back, checking every read against the bytes left, so a truncated file is
+// reported with where it ends instead of as garbage.
+class Reader {
+ public:
+  Reader(std::FILE *f, uint64_t size) : f_(f), size_(size) {}
+
+  // `what` names the field for the error message.
+  bool bytes(void *out, size_t n, const std::string &what) {
+    if (n > size_ - offset_) return truncated(what);
+    if (n > 0 && std::fread(out, 1, n, f_) != n) {
+      error_ = std::string("read error inside ") + what + ": " + std::strerror(errno);
+      return false;
+    }
+    sum_.update(static_cast<const uint8_t *>(out), n);
+    offset_ += n;
+    return true;
+  }
+  bool u32(uint32_t &v, const std::string &what) { return fixed(v, 4, what); }
+  bool u64(uint64_t &v, const std::string &what) { return fixed(v, 8, what); }
+  bool f64(double &v, const std::string &what) {
+    uint64_t bits = 0;
+    if (!fixed(bits, 8, what)) return false;
+    v = std::bit_cast<double>(bits);
+    return true;
+  }
+  bool str(std::string &s, const std::string &what) {
+    uint32_t n = 0;
+    if (!u32(n, what)) return false;
+    if (n > kMaxStringBytes) return corrupted(what + " claims " + std::to_string(n) + " bytes");
+    s.resize(n);
+    return bytes(s.data(), n, what);
+  }
+  bool doubles(std::vector<double> &out, uint64_t count, const std::string &what) {
+    if (count > (size_ - offset_) / 8) return truncated(what);
+    out.resize(count);
+    constexpr size_t kBatch = 8192;
+    std::vector<uint8_t> buffer(std::min<uint64_t>(count, kBatch) * 8);
+    for (size_t first = 0; first < count; first += kBatch) {
+      const size_t n = std::min<uint64_t>(kBatch, count - first);
+      if (!bytes(buffer.data(), n * 8, what)) return false;
+      for (size_t i = 0; i < n; ++i) out[first + i] = std::bit_cast<double>(load_le(&buffer[i * 8], 8));
+    }
+    return true;
+  }
+  bool corrupted(const std::string &why) {
+    error_ = "corrupted: " + why;
+    return false;
+  }
+
+  uint64_t checksum_so_far() const { return sum_.value(); }
+  uint64_t offset() const { return offset_; }
+  uint64_t size() const { return size_; }
+  const std::string &error() const { return error_; }
+
+ private:
+  template <class T>
+  bool fixed(T &v, int n, const std::string &what) {
+    uint8_t b[8];
+    if (!bytes(b, size_t(n), what)) return false;
+    v = static_cast<T>(load_le(b, n));
+    return true;
+  }
+  bool truncated(const std::string &what) {
+    error_ = "truncated: the file ends at byte " + std::to_string(size_) + ", inside " + what;
+    return false;
+  }
+
+  std::FILE *f_;
+  uint64_t size_, offset_ = 0;
+  Checksum sum_;
+  std::string error_;
+};
+
+Error checkpoint_error(const std::string &path, const std::string &reason) {
+  return Error{"checkpoint '" + path + "': " + reason};
+}
+
+Expected<File> open_for_reading(const std::string &path, uint64_t &size) {
+  File f(std::fopen(path.c_str(), "rb"));
+  if (!f) return checkpoint_error(path, std::string("cannot open: ") + std::strerror(errno));
+  if (std::fseek(f.get(), 0, SEEK_END) != 0)
+    return checkpoint_error(path, "cannot seek: " + std::string(std::strerror(errno)));
+  const long end = std::ftell(f.get());
+  if (end < 0 || std::fseek(f.get(), 0, SEEK_SET) != 0)
+    return checkpoint_error(path, "cannot determine its size: " + std::string(std::strerror(errno)));
+  size = static_cast<uint64_t>(end);
+  return f;
+}
+
+// Everything up to the element count.
+Status read_header(const std::string &path, Reader &r, Stored &s) {
+  std::array<char, 8> magic{};
+  if (r.size() < magic.size())
+    return checkpoint_error(path,
+                            "not a Nimbus checkpoint (" + std::to_string(r.size()) + " bytes is too short)");
+  if (!r.bytes(magic.data(), magic.size(), "the magic number")) return checkpoint_error(path, r.error());
+  if (magic != kMagic) return checkpoint_error(path, "not a Nimbus checkpoint (wrong magic number)");
+  uint32_t version = 0;
+  if (!r.u32(version, "the format version")) return checkpoint_error(path, r.error());
+  if (version != kCheckpointVersion) {
+    return checkpoint_error(path, "format version " + std::to_string(version) +
+                                      " is not supported (this Nimbus reads version " +
+                                      std::to_string(kCheckpointVersion) + ")");
+  }
+  CheckpointInfo &i = s.info;
+  if (!(r.u32(s.width, "the header") && r.u32(s.height, "the header") && r.u64(i.iterations, "the header") &&
+        r.u64(i.seed, "the header") && r.u64(s.nonfinite, "the header") && r.f64(i.seconds, "the header") &&
+        r.str(i.integrator, "the integrator id") && r.str(i.fingerprint, "the fingerprint")))
+    return checkpoint_error(path, r.error());
+  return Ok{};
+}
+
+Expected<Stored> read_all(const std::string &path) {
+  uint64_t size = 0;
+  auto file = open_for_reading(path, size);
+  if (!file) return file.error();
+  Reader r(file->get(), size);
+  Stored s;
+  if (Status h = read_header(path, r, s); !h) return h.error();
+
+  uint32_t count = 0;
+  if (!r.u32(count, "the element count")) return checkpoint_error(path, r.error());
+  if (count > kMaxElements)
+    return checkpoint_error(path, "corrupted: " + std::to_string(count) + " elements");
+  const uint64_t pixels = uint64_t(s.width) * s.height;
+  for (uint32_t k = 0; k < count; ++k) {
+    StoredElement e;
+    const std::string which = "element #" + std::to_string(k + 1);
+    if (!r.str(e.name, "the name of " + which) || !r.u32(e.channels, "element '" + e.name + "'"))
+      return checkpoint_error(path, r.error());
+    if (e.channels != 1 && e.channels != 3)
+      return checkpoint_error(
+          path, "corrupted: element '" + e.name + "' has " + std::to_string(e.channels) + " channels");
+    if (!r.doubles(e.sums, pixels * e.channels, "the sums of element '" + e.name + "'"))
+      return checkpoint_error(path, r.error());
+    s.elements.push_back(std::move(e));
+  }
+  const uint64_t expected = r.checksum_so_far();
+  uint8_t b[8];
+  // The stored checksum is read raw: Reader's running sum would include it.
+  if (size - r.offset() < 8) {
+    return checkpoint_error(
+        path, "truncated: the file ends at byte " + std::to_string(size) + ", inside the checksum");
+  }
+  if (std::fread(b, 1, 8, file->get()) != 8) return checkpoint_error(path, "read error inside the checksum");
+  if (size - r.offset() > 8)
+    return checkpoint_error(
+        path, "corrupted: " + std::to_string(size - r.offset() - 8) + " unexpected bytes after the checksum");
+  if (load_le(b, 8) != expected) return checkpoint_error(path, "corrupted: checksum mismatch");
+  return s;
+}
+
+std::vector<std::pair<std::string, std::string>> fingerprint_fields(const std::string &fingerprint) {
+  std::vector<std::pair<std::string, std::string>> fields;
+  size_t start = 0;
+  while (start < fingerprint.size()) {
+    size_t end = fingerprint.find('\n', start);
+    if (end == std::string::npos) end = fingerprint.size();
+    const std::string line = fingerprint.substr(start, end - start);
+    const size_t eq = line.find('=');
+    if (!line.empty())
+      fields.emplace_back(line.substr(0, eq), eq == std::string::npos ? "" : line.substr(eq + 1));
+    start = end + 1;
+  }
+  return fields;
+}
+
+// "seed: checkpoint 7, this render 8; scene_hash: checkpoint ..., this render ..."
+std::string fingerprint_differences(const std::string &stored, const std::string &current) {
+  const auto a = fingerprint_fields(stored), b = fingerprint_fields(current);
+  const auto find = [](const auto &fields, const std::string &key) -> const std::string * {
+    for (const auto &[k, v] : fields)
+      if (k == key) return &v;
+    return nullptr;
+  };
+  std::vector<std::string> keys;
+  for (const auto *fields : {&a, &b})
+    for (const auto &[k, v] : *fields)
+      if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+  std::string out;
+  for (const std::string &k : keys) {
+    const std::string *x = find(a, k), *y = find(b, k);
+    if (x && y && *x == *y) continue;
+    out += (out.empty() ? "" : "; ") + k + ": checkpoint '" + (x ? *x : "(none)") + "', this render '" +
+           (y ? *y : "(none)") + "'";
+  }
+  return out.empty() ? "the fingerprints differ" : out;
+}
+
+std::string element_list(const std::vector<std::pair<std::string, uint32_t>> &elements) {
+  std::string out;
+  for (const auto &[name, channels] : elements)
+    out += (out.empty() ? "" : ", ") + name + " (" + std::to_string(channels) + ")";
+  return out;
+}
+
+}  // namespace
+
+std::string content_hash(std::string_view bytes) {
+  Checksum c;
+  c.update(reinterpret_cast<const uint8_t *>(bytes.data()), bytes.size());
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(c.value()));
+  return hex;
+}
+
+Status write_checkpoint(const Film &film, const std::string &path, const CheckpointInfo &info) {
+  if (film.has_pending_splats())
+    return checkpoint_error(path, "the film has splats not merged into its sums");
+  if (info.integrator.size() > kMaxStringBytes || info.fingerprint.size() > kMaxStringBytes)
+    return checkpoint_error(path, "the integrator id or fingerprint is too long");
+  return write_atomically(path, [&](const std::string &tmp) -> Status {
+    File f(std::fopen(tmp.c_str(), "wb"));
+    if (!f) return Error{"cannot create '" + tmp + "': " + std::strerror(errno)};
+    Writer w(f.get());
+    w.bytes(kMagic.data(), kMagic.size());
+    w.u32(kCheckpointVersion);
+    w.u32(film.width());
+    w.u32(film.height());
+    w.u64(film.iterations());
+    w.u64(info.seed);
+    w.u64(film.nonfinite_count());
+    w.f64(info.seconds);
+    w.str(info.integrator);
+    w.str(info.fingerprint);
+    const std::vector<int32_t> ids = film.active_elements();
+    w.u32(static_cast<uint32_t>(ids.size()));
+    for (int32_t id : ids) {
+      w.str(film.element_name(id));
+      w.u32(film.element_channels(id));
+      w.doubles(film.sums(id));
+    }
+    w.finish();
+    if (!w.ok()) return Error{std::string("write error: ") + std::strerror(errno)};
+    if (std::fclose(f.release()) != 0) return Error{std::string("write error: ") + std::strerror(errno)};
+    return Ok{};
+  });
+}
+
+Status read_checkpoint(Film &film, const std::string &path, CheckpointInfo &info) {
+  auto read = read_all(path);
+  if (!read) return read.error();
+  Stored &s = read.value();
+
+  if (s.width != film.width() || s.height != film.height()) {
+    return checkpoint_error(path, "it was made for a " + std::to_string(s.width) + "x" +
+                                      std::to_string(s.height) + " image; this render is " +
+                                      std::to_string(film.width()) + "x" + std::to_string(film.height()));
+  }
+  if (s.info.integrator != info.integrator) {
+    return checkpoint_error(path, "it was made with integrator '" + s.info.integrator +
+                                      "'; this render uses '" + info.integrator + "'");
+  }
+  if (s.info.seed != info.seed) {
+    return checkpoint_error(path, "it was made with seed " + std::to_string(s.info.seed) +
+                                      "; this render uses " + std::to_string(info.seed));
+  }
+  if (s.info.fingerprint != info.fingerprint) {
+    return checkpoint_error(path, "it was made for a different render (" +
+                                      fingerprint_differences(s.info.fingerprint, info.fingerprint) + ")");
+  }
+  std::vector<std::pair<std::string, uint32_t>> stored, current;
+  for (const StoredElement &e : s.elements) stored.emplace_back(e.name, e.channels);
+  const std::vector<int32_t> ids = film.active_elements();
+  for (int32_t id : ids) current.emplace_back(film.element_name(id), film.element_channels(id));
+  auto sorted = [](auto v) {
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  if (sorted(stored) != sorted(current)) {
+    return checkpoint_error(
+        path, "it holds the elements " + element_list(stored) + "; this render has " + element_list(current));
+  }
+
+  // Validated: only now is the film changed.
+  for (int32_t id : ids) {
+    const auto it = std::find_if(s.elements.begin(), s.elements.end(),
+                                 [&](const StoredElement &e) { return e.name == film.element_name(id); });
+    const std::span<double> sums = film.sums(id);
+    std::copy(it->sums.begin(), it->sums.end(), sums.begin());
+  }
+  film.set_iterations(s.info.iterations);
+  film.set_nonfinite_count(s.nonfinite);
+  info.iterations = s.info.iterations;
+  info.seconds = s.info.seconds;
+  return Ok{};
+}
+
+Expected<CheckpointInfo> peek_checkpoint(const std::string &path) {
+  uint64_t size = 0;
+  auto file = open_for_reading(path, size);
+  if (!file) return file.error();
+  Reader r(file->get(), size);
+  Stored s;
+  if (Status h = read_header(path, r, s); !h) return h.error();
+  return s.info;
+}
+
+}  // namespace nimbus
