@@ -33,9 +33,9 @@ constexpr uint64_t kStreamPhoton = 0x70686f746f6e;  // "photon"
 
 constexpr uint64_t kPhotonPathsPerTask = 4096;
 constexpr uint64_t kPhotonsPerPathCap = 4;  // a task stops tracing when its buffer holds this many per path
-// N_max: 2^20 photon paths per pass instead of the spec's 2^22 (see schedule.hpp and the report):
-// on 2 cores and images of ~0.25 MPix, 2^22 paths would cost as much as ~20 camera passes each.
-constexpr uint64_t kMaxPhotonPaths = uint64_t(1) << 20;
+// N_max (spec 5): photon paths per pass when every pixel is useful. Passes larger than an image's
+// camera paths are spread over several iterations, so the photon : camera path ratio stays ~1.
+constexpr uint64_t kMaxPhotonPaths = uint64_t(1) << 22;
 constexpr uint64_t kProbePaths = uint64_t(1) << 16;
 
 inline bool has(nimbus_lobe_t lobes, nimbus_lobe_t bits) { return (lobes & bits) != 0; }
@@ -260,7 +260,7 @@ class CausticsSolver final : public sdk::Integrator {
     const auto fn = [](const nimbus_thread_ctx_t *ctx, uint64_t b, uint64_t e, void *user) {
       const Job &j = *static_cast<Job *>(user);
       PhotonChunk &c = (*j.chunks)[b / kPhotonPathsPerTask];
-      c.photons.reserve(size_t(e - b));
+      c.photons.reserve(256);
       const size_t cap = size_t(e - b) * kPhotonsPerPathCap;
       for (uint64_t p = b; p < e && c.photons.size() < cap; ++p) {
         j.self->trace_photon(*ctx, p, j.pass, c);

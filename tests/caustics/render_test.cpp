@@ -1,0 +1,200 @@
+// In-process renders with nimbus.caustics: the switch and the zero-cost rule against nimbus.pt (bit for
+// bit), render elements and LightMix layers summing to beauty, and the statistical agreement with
+// nimbus.pt (area light: PT converges) and with nimbus.lt (point light: only light tracing and the
+// solver see the caustic). Small images and fixed seeds keep them fast and deterministic.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "support/render_support.hpp"
+
+namespace nimbus::testing {
+namespace {
+
+// A glass sphere on a floor lit from the side, seen from above so that the caustic is not hidden.
+std::string sphere_scene(const std::string &light, int width = 80, int height = 45,
+                         const char *camera = "{ position: [1.6, -1.8, 2.4], look_at: [0.5, 0.05, 0.05], up: [0, 0, 1], fov: 36 }") {
+  return R"(
+render: { resolution: [)" +
+         std::to_string(width) + ", " + std::to_string(height) + R"(], seed: 3, max_depth: 10 }
+camera: )" + std::string(camera) + R"(
+materials:
+  floor: { type: diffuse, albedo: [0.7, 0.7, 0.7] }
+  glass: { type: dielectric, ior: 1.5 }
+  lamp:  { type: diffuse, albedo: [0, 0, 0] }
+objects:
+  - { shape: rectangle, size: [6, 6], material: floor }
+  - { shape: sphere, center: [0, 0, 0.5], radius: 0.5, material: glass }
+)" + light;
+}
+
+const char *kAreaLight = R"(
+  - { shape: rectangle, size: [0.35, 0.35], material: lamp, emission: { radiance: [110, 110, 110] }, group: key,
+      transform: { rotate: [180, 0, 0], translate: [-1.4, 0, 1.9] } }
+)";
+
+// Two lights in two LightMix groups, one of them behind glass.
+const char *kTwoLights = R"(
+  - { shape: rectangle, size: [0.35, 0.35], material: lamp, emission: { radiance: [90, 80, 70] }, group: warm,
+      transform: { rotate: [180, 0, 0], translate: [-1.4, 0, 1.9] } }
+lights:
+  - { type: point, position: [1.2, 1.2, 2.2], intensity: [3, 4, 6], group: cool }
+)";
+
+// No sharp material anywhere: a diffuse room with a box in it.
+const char *kDiffuseRoom = R"(
+render: { resolution: [48, 32], seed: 5, max_depth: 8 }
+camera: { position: [0, -3.6, 1], look_at: [0, 0, 0.9], up: [0, 0, 1], fov: 50 }
+materials:
+  white: { type: diffuse, albedo: [0.75, 0.75, 0.75] }
+  red:   { type: diffuse, albedo: [0.6, 0.1, 0.1] }
+  lamp:  { type: diffuse, albedo: [0, 0, 0] }
+objects:
+  - { shape: rectangle, size: [3, 3], material: white }
+  - { shape: rectangle, size: [3, 3], material: white, transform: { rotate: [180, 0, 0], translate: [0, 0, 2] } }
+  - { shape: rectangle, size: [3, 2], material: red, transform: { rotate: [90, 0, 0], translate: [0, 1.5, 1] } }
+  - { shape: box, size: [0.6, 0.6, 0.8], material: white, transform: { translate: [0.3, 0.2, 0.4] } }
+  - { shape: rectangle, size: [0.5, 0.5], material: lamp, emission: { radiance: [20, 20, 20] },
+      transform: { rotate: [180, 0, 0], translate: [0, 0, 1.99] } }
+lights:
+  - { type: point, position: [-0.8, -0.5, 1.5], intensity: [2, 2, 2] }
+)";
+
+RenderRequest request(const std::string &integrator, uint64_t iterations, uint64_t seed,
+                      std::vector<std::string> elements = {}) {
+  RenderRequest r;
+  r.integrator = integrator;
+  r.iterations = iterations;
+  r.seed = seed;
+  r.elements = std::move(elements);
+  return r;
+}
+
+double stat(const ImageLayers &img, const std::string &name) {
+  const auto it = img.numbers.find("nimbus:stat:" + name);
+  return it == img.numbers.end() ? -1.0 : it->second;
+}
+
+// Mean luminance and relMSE over a pixel rectangle [x0, x1) x [y0, y1).
+struct Region {
+  uint32_t x0, y0, x1, y1;
+};
+
+double region_mean(const ImageLayers &img, const Region &r) {
+  const std::vector<float> &d = img.layers.at("beauty").data;
+  double s = 0;
+  for (uint32_t y = r.y0; y < r.y1; ++y)
+    for (uint32_t x = r.x0; x < r.x1; ++x) s += luminance(Rgb::load(&d[3 * (size_t(y) * img.width + x)]));
+  return s / double((r.x1 - r.x0) * (r.y1 - r.y0));
+}
+
+double region_rel_mse(const ImageLayers &test, const ImageLayers &ref, const Region &r) {
+  const std::vector<float> &t = test.layers.at("beauty").data, &f = ref.layers.at("beauty").data;
+  double s = 0;
+  for (uint32_t y = r.y0; y < r.y1; ++y)
+    for (uint32_t x = r.x0; x < r.x1; ++x) {
+      const size_t i = 3 * (size_t(y) * test.width + x);
+      const double a = luminance(Rgb::load(&t[i])), b = luminance(Rgb::load(&f[i]));
+      s += (a - b) * (a - b) / (b * b + 0.01);
+    }
+  return s / double((r.x1 - r.x0) * (r.y1 - r.y0));
+}
+
+TEST(CausticsRender, OffIsThePathTracerBitForBit) {
+  SceneRenderer r;
+  const std::string scene = sphere_scene(kAreaLight);
+  RenderRequest off = request("nimbus.caustics", 4, 9);
+  off.options = {{"caustics", "off"}};
+  const auto a = r.render(scene, off);
+  const auto b = r.render(scene, request("nimbus.pt", 4, 9));
+  ASSERT_EQ(a.layers.at("beauty").data, b.layers.at("beauty").data);
+  EXPECT_EQ(stat(a, "caustics_photon_paths"), -1.0);  // never armed: not even the statistic
+}
+
+// Zero-cost rule: without a sharp material the probe finds nothing, no photon is traced after it, and
+// every camera pass is nimbus.pt's.
+TEST(CausticsRender, CausticFreeSceneIsThePathTracer) {
+  SceneRenderer r;
+  const auto a = r.render(kDiffuseRoom, request("nimbus.caustics", 12, 4));
+  const auto b = r.render(kDiffuseRoom, request("nimbus.pt", 12, 4));
+  EXPECT_EQ(stat(a, "caustics_photon_paths"), double(1 << 16));  // the probe only
+  EXPECT_EQ(stat(a, "caustics_photons"), 0.0);
+  EXPECT_EQ(stat(a, "caustics_map_iterations"), 0.0);
+  ASSERT_EQ(a.layers.at("beauty").data, b.layers.at("beauty").data);
+}
+
+double max_rel_diff(const std::vector<float> &beauty, const std::vector<const std::vector<float> *> &parts) {
+  double worst = 0;
+  for (size_t i = 0; i < beauty.size(); ++i) {
+    double s = 0;
+    for (const auto *p : parts) s += (*p)[i];
+    worst = std::max(worst, std::abs(s - beauty[i]) / std::max(std::abs(double(beauty[i])), 1e-3));
+  }
+  return worst;
+}
+
+TEST(CausticsRender, ElementsAndLightMixSumToBeauty) {
+  SceneRenderer r;
+  const auto img = r.render(sphere_scene(kTwoLights),
+                            request("nimbus.caustics", 24, 2, {"direct", "indirect", "emission", "caustics", "lightmix"}));
+  ASSERT_TRUE(img.layers.count("caustics"));
+  const auto &L = img.layers;
+  const std::vector<float> &beauty = L.at("beauty").data;
+  EXPECT_LT(max_rel_diff(beauty, {&L.at("direct").data, &L.at("indirect").data, &L.at("emission").data,
+                                  &L.at("caustics").data}),
+            1e-5);
+  EXPECT_LT(max_rel_diff(beauty, {&L.at("lightmix.warm").data, &L.at("lightmix.cool").data}), 1e-5);
+  // The caustics layer is not empty, and both lights contribute caustic light.
+  const Rgb c = mean_rgb(L.at("caustics").data);
+  EXPECT_GT(luminance(c), 1e-3 * luminance(mean_rgb(beauty)));
+  EXPECT_GT(stat(img, "caustics_photons"), 0.0);
+  EXPECT_GT(stat(img, "caustics_bytes_per_photon"), 40.0);
+  EXPECT_LT(stat(img, "caustics_bytes_per_photon"), 64.0);
+}
+
+// Area light: path tracing converges on the caustic too, so the difference between solver and PT
+// renders shrinks with iterations (like their noise), and caustic means agree.
+TEST(CausticsRender, AgreesWithPathTracer) {
+  SceneRenderer r;
+  const std::string scene = sphere_scene(kAreaLight);
+  const uint64_t n = 16;
+  const auto s1 = r.render(scene, request("nimbus.caustics", n, 21));
+  const auto p1 = r.render(scene, request("nimbus.pt", n, 22));
+  const auto s8 = r.render(scene, request("nimbus.caustics", 8 * n, 23));
+  const auto p8 = r.render(scene, request("nimbus.pt", 8 * n, 24));
+  const double e1 = rel_mse(s1.layers.at("beauty").data, p1.layers.at("beauty").data);
+  const double e8 = rel_mse(s8.layers.at("beauty").data, p8.layers.at("beauty").data);
+  std::printf("relMSE(solver, pt): %.4g at %llu iterations, %.4g at %llu (ratio %.2f)\n", e1,
+              (unsigned long long)n, e8, (unsigned long long)(8 * n), e1 / e8);
+  EXPECT_GT(e1 / e8, 3.0);
+  const Rgb ms = mean_rgb(s8.layers.at("beauty").data), mp = mean_rgb(p8.layers.at("beauty").data);
+  EXPECT_NEAR(luminance(ms) / luminance(mp), 1.0, 0.02);
+}
+
+// Point light: PT cannot render the caustic; light tracing can. The solver converges to it: relMSE over
+// the caustic falls from the probe-only map to a few hundred iterations, and the region mean matches.
+// Seen from above so that the region holds floor only (light tracing cannot see through the sphere).
+TEST(CausticsRender, ConvergesToLightTracer) {
+  SceneRenderer r;
+  const std::string scene = sphere_scene(R"(
+lights:
+  - { type: point, position: [-2.0, 0, 1.6], intensity: [12, 12, 12], group: key }
+)", 80, 45, "{ position: [0.6, -1.2, 3.6], look_at: [0.6, 0, 0], up: [0, 0, 1], fov: 40 }");
+  const Region caustic{40, 14, 60, 32}, core{44, 18, 52, 24};
+  const auto lt = r.render(scene, request("nimbus.lt", 2048, 34));
+  const auto s1 = r.render(scene, request("nimbus.caustics", 8, 31));
+  const auto s2 = r.render(scene, request("nimbus.caustics", 256, 33));
+  const double e1 = region_rel_mse(s1, lt, caustic), e2 = region_rel_mse(s2, lt, caustic);
+  std::printf("caustic region: relMSE(solver, lt) %.4g at 8 iterations (%.0f photon paths), %.4g at 256 (%.0f)\n", e1,
+              stat(s1, "caustics_photon_paths"), e2, stat(s2, "caustics_photon_paths"));
+  std::printf("region mean %.4f vs lt %.4f; core %.4f vs %.4f\n", region_mean(s2, caustic), region_mean(lt, caustic),
+              region_mean(s2, core), region_mean(lt, core));
+  EXPECT_GT(e1 / e2, 2.5);
+  EXPECT_NEAR(region_mean(s2, caustic) / region_mean(lt, caustic), 1.0, 0.04);
+  EXPECT_NEAR(region_mean(s2, core) / region_mean(lt, core), 1.0, 0.05);
+}
+
+}  // namespace
+}  // namespace nimbus::testing
