@@ -14,14 +14,25 @@ int32_t is_active(const nimbus_host_t *host, nimbus_element_t el) {
   return context_of(host).film->is_active(el) ? 1 : 0;
 }
 
-void accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *, nimbus_element_t el, uint32_t x,
-                uint32_t y, const float *value) {
-  context_of(host).film->accumulate(el, x, y, value);
+// Odd iterations' beauty also feeds the error estimate's half film (only with --target-error).
+Film *half_film(const RenderContext &ctx, nimbus_element_t el) {
+  return el == NIMBUS_ELEMENT_BEAUTY && ctx.error_estimate && ErrorEstimate::is_odd(ctx.iteration)
+             ? &ctx.error_estimate->half()
+             : nullptr;
 }
 
-void splat(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx, nimbus_element_t el, float fx, float fy,
+void accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *, nimbus_element_t el, uint32_t x,
+                uint32_t y, const float *value) {
+  const RenderContext &ctx = context_of(host);
+  ctx.film->accumulate(el, x, y, value);
+  if (Film *half = half_film(ctx, el)) half->accumulate(el, x, y, value);
+}
+
+void splat(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, nimbus_element_t el, float fx, float fy,
            const float *value) {
-  context_of(host).film->splat(ctx->worker_index, el, fx, fy, value);
+  const RenderContext &ctx = context_of(host);
+  ctx.film->splat(tc->worker_index, el, fx, fy, value);
+  if (Film *half = half_film(ctx, el)) half->splat(tc->worker_index, el, fx, fy, value);
 }
 
 int32_t lightmix_is_active(const nimbus_host_t *host) { return context_of(host).lightmix_elements.empty() ? 0 : 1; }

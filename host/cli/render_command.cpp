@@ -3,6 +3,8 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <charconv>
 #include <cmath>
@@ -31,6 +33,8 @@ constexpr const char *kHelp =
     "  -o, --output OUT.exr   output image (default: out/<scene name>.exr); the PNG gets the same stem\n"
     "  --iterations N         samples per pixel (overrides the scene)\n"
     "  --time SECONDS         time budget (overrides the scene); with --iterations, whichever comes first\n"
+    "  --target-error X       stop when the estimated relMSE of the image falls below X (no reference\n"
+    "                         needed: estimated from odd and even iterations)\n"
     "  --threads N            worker threads (default: all cores)\n"
     "  --seed S               random seed (overrides the scene)\n"
     "  --elements a,b,...     render elements besides beauty (added to the scene's)\n"
@@ -38,6 +42,8 @@ constexpr const char *kHelp =
     "  --integrator ID        integrator plugin (overrides the scene), e.g. pt, nimbus.pt\n"
     "  --light-sampler ID     light sampler plugin (default: nimbus.lights.tree above 8 lights,\n"
     "                         nimbus.lights.power otherwise)\n"
+    "  --filter NAME          pixel filter: box, gaussian, blackman-harris (overrides the scene)\n"
+    "  --region x0,y0,x1,y1   render only this pixel rectangle (crop window); the rest stays black\n"
     "  -q, --quiet            no progress output\n"
     "  --checkpoint PATH      checkpoint file (default: OUT.exr.ckpt)\n"
     "  --checkpoint-every S   seconds between checkpoints (default 300; 0: only when the render stops)\n"
@@ -63,7 +69,8 @@ extern "C" void on_sigint(int) {
 struct Args {
   std::string scene;
   RenderOptions options;
-  std::optional<std::string> caustics, integrator;
+  std::optional<std::string> caustics, integrator, filter;
+  std::optional<std::array<uint32_t, 4>> region;
   bool quiet = false;
 };
 
@@ -100,6 +107,10 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
       double t = 0;
       if (!value(v) || !parse_number(v, t) || !(t > 0)) return "--time: expected a positive number of seconds, got '" + v + "'";
       a.options.time_seconds = t;
+    } else if (k == "--target-error") {
+      double t = 0;
+      if (!value(v) || !parse_number(v, t) || !(t > 0)) return "--target-error: expected a positive number, got '" + v + "'";
+      a.options.target_error = t;
     } else if (k == "--threads") {
       uint32_t n = 0;
       if (!value(v) || !parse_number(v, n) || n == 0 || n > 4096) return "--threads: expected an integer in [1, 4096], got '" + v + "'";
@@ -116,6 +127,20 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
     } else if (k == "--caustics") {
       if (!value(v) || (v != "on" && v != "off")) return "--caustics: expected 'on' or 'off', got '" + v + "'";
       a.caustics = v;
+    } else if (k == "--filter") {
+      if (!value(v) || (v != "box" && v != "gaussian" && v != "blackman-harris"))
+        return "--filter: expected box, gaussian or blackman-harris, got '" + v + "'";
+      a.filter = v;
+    } else if (k == "--region") {
+      std::array<uint32_t, 4> r{};
+      std::stringstream ss(value(v) ? v : std::string());
+      std::string part;
+      int n = 0;
+      bool ok = true;
+      while (std::getline(ss, part, ',')) ok = ok && n < 4 && parse_number(part, r[n++]);
+      if (!ok || n != 4 || r[2] <= r[0] || r[3] <= r[1])
+        return "--region: expected x0,y0,x1,y1 with x1 > x0 and y1 > y0, got '" + v + "'";
+      a.region = r;
     } else if (k == "--light-sampler") {
       if (!value(v) || v.empty()) return "--light-sampler: expected a plugin id";
       a.options.light_sampler = v;
@@ -165,6 +190,14 @@ int render_command(const std::vector<std::string> &argv) {
   SceneDesc &desc = scene.value();
   if (a.caustics) desc.render.options["caustics"] = *a.caustics;
   if (a.integrator) desc.render.integrator = *a.integrator;
+  if (a.filter) desc.render.filter = *a.filter;
+  if (a.region) {
+    if ((*a.region)[2] > desc.render.width || (*a.region)[3] > desc.render.height) {
+      std::fprintf(stderr, "nimbus render: --region exceeds the image (%ux%u)\n", desc.render.width, desc.render.height);
+      return kExitUsage;
+    }
+    std::copy(a.region->begin(), a.region->end(), desc.render.region);
+  }
   if (a.options.output_exr.empty())
     a.options.output_exr = (std::filesystem::path("out") / std::filesystem::path(a.scene).stem()).string() + ".exr";
   {

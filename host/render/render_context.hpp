@@ -19,6 +19,7 @@
 #include "lights/light_set.hpp"
 #include "materials/bsdf.hpp"
 #include "render/camera.hpp"
+#include "render/error_estimate.hpp"
 #include "render/pixel_filter.hpp"
 #include "scene/scene_desc.hpp"
 
@@ -34,6 +35,9 @@ struct RenderContext {
   Camera camera;
   PixelFilter filter;
   std::unique_ptr<Film> film;
+  // Only with a target error: odd-iteration beauty, for the reference-free error estimate.
+  std::unique_ptr<ErrorEstimate> error_estimate;
+  uint64_t iteration = 0;  // the iteration being rendered (1-based), set before its tiles start
   uint64_t seed = 1;
   // Film element of each LightMix group (empty when LightMix was not requested).
   std::vector<int32_t> lightmix_elements;

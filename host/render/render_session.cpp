@@ -141,6 +141,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   if (!ip) return Error{desc->path + ": integrator: " + ip.error().message};
   integrator.registry = &registry, integrator.plugin = ip.value();
   const std::string sampler_id = !options.light_sampler.empty()                ? options.light_sampler
+                                 : !desc->render.light_sampler.empty()         ? desc->render.light_sampler
                                  : ctx.lights.count() > kTreeLightThreshold ? "nimbus.lights.tree"
                                                                             : "nimbus.lights.power";
   auto sp = registry.create(sampler_id, NIMBUS_KIND_LIGHT_SAMPLER, host);
@@ -227,9 +228,16 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
 
   const uint64_t iterations = options.iterations   ? *options.iterations
                               : desc->render.iterations ? desc->render.iterations
-                              : (options.time_seconds || desc->render.time_seconds > 0) ? 0
+                              : (options.time_seconds || desc->render.time_seconds > 0 || options.target_error) ? 0
                                                                                          : kDefaultIterations;
   const double budget = options.time_seconds ? *options.time_seconds : desc->render.time_seconds;
+  const double target_error = options.target_error ? *options.target_error : 0.0;
+  if (target_error > 0) {
+    if (film.iterations() > 0)
+      return Error{"--target-error cannot resume a checkpoint (the odd/even halves were not saved)"};
+    ctx.error_estimate = std::make_unique<ErrorEstimate>(desc->render.width, desc->render.height, ctx.worker_count);
+  }
+  double estimated_error = -1;
 
   nimbus_render_info_t info{};
   info.header = {sizeof(info), NIMBUS_S_TYPE_RENDER_INFO, nullptr};
@@ -239,11 +247,17 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   if (nimbus_status_t s = it.begin_render(integrator.plugin, &info); s != NIMBUS_OK)
     return Error{"integrator '" + integrator_id + "' failed to begin the render: " + status_text(s)};
 
-  // Tiles in row-major order; each is rendered by exactly one worker per iteration.
+  // Tiles in row-major order over the render region; each is rendered by one worker per iteration.
   const uint32_t w = desc->render.width, h = desc->render.height;
+  const uint32_t *reg = desc->render.region;
+  const bool has_region = reg[2] > reg[0] && reg[3] > reg[1];
+  const uint32_t rx0 = has_region ? std::min(reg[0], w) : 0, ry0 = has_region ? std::min(reg[1], h) : 0;
+  const uint32_t rx1 = has_region ? std::min(reg[2], w) : w, ry1 = has_region ? std::min(reg[3], h) : h;
   std::vector<nimbus_tile_t> tiles;
-  for (uint32_t y = 0; y < h; y += kTileSize)
-    for (uint32_t x = 0; x < w; x += kTileSize) tiles.push_back({x, y, std::min(w, x + kTileSize), std::min(h, y + kTileSize), 0});
+  for (uint32_t y = ry0; y < ry1; y += kTileSize)
+    for (uint32_t x = rx0; x < rx1; x += kTileSize)
+      tiles.push_back({x, y, std::min(rx1, x + kTileSize), std::min(ry1, y + kTileSize), 0});
+  const uint64_t region_pixels = uint64_t(rx1 - rx0) * (ry1 - ry0);
 
   const auto t0 = Clock::now();
   nimbus_status_t failure = NIMBUS_OK;
@@ -260,7 +274,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
     return s;
   };
   auto last_save = t0;
-  while (!cancel.load()) {
+  bool reached_target = false;
+  while (!cancel.load() && !reached_target) {
     if (iterations && done >= iterations) break;
     if (budget > 0 && done > resumed_from) {
       // Stop when another iteration would overrun the budget (estimated from this session's mean).
@@ -275,6 +290,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       last_save = Clock::now();
     }
     const uint64_t i = done + 1;
+    ctx.iteration = i;
     if (nimbus_status_t s = it.begin_iteration(integrator.plugin, i); s != NIMBUS_OK) {
       failure = s, failure_hook = "begin_iteration";
       break;
@@ -304,13 +320,20 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
     }
     film.end_iteration();
     done = i;
+    if (ctx.error_estimate) {
+      ctx.error_estimate->end_iteration(i);
+      if (i % 2 == 0) {
+        estimated_error = ctx.error_estimate->relmse(film);
+        if (estimated_error < target_error) reached_target = true;
+      }
+    }
     if (progress) {
       RenderProgress p;
       p.iteration = done;
       p.total_iterations = iterations;
       p.elapsed_seconds = seconds_since(t0);
       p.time_budget = budget;
-      p.samples_per_second = double(w) * h * (done - resumed_from) / std::max(p.elapsed_seconds, 1e-9);
+      p.samples_per_second = double(region_pixels) * (done - resumed_from) / std::max(p.elapsed_seconds, 1e-9);
       std::lock_guard lock(ctx.phase_mutex);
       p.phase = ctx.phase;
       progress(p);
@@ -341,13 +364,17 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       {"light_sampler", sampler.plugin->desc->id},
       {"scene", desc->path},
       {"seed", std::to_string(desc->render.seed)},  // exact for any 64-bit seed
-      {"stopped_by", failure != NIMBUS_OK ? "error" : was_cancelled ? "cancel" : (iterations && done >= iterations) ? "iterations" : "time"}};
+      {"stopped_by", failure != NIMBUS_OK ? "error" : was_cancelled ? "cancel" : reached_target ? "target_error" : (iterations && done >= iterations) ? "iterations" : "time"}};
   // "seconds" is the render time of all the iterations in the image, over every resumed session.
   std::vector<std::pair<std::string, double>> nmeta = {{"iterations", double(done)},
                                                        {"seconds", previous_seconds + seconds},
                                                        {"threads", double(ctx.worker_count)},
                                                        {"nonfinite_samples", double(film.nonfinite_count())},
                                                        {"rays", double(result.rays)}};
+  if (ctx.error_estimate) {
+    nmeta.push_back({"target_error", target_error});
+    nmeta.push_back({"estimated_relmse", estimated_error});
+  }
   if (options.resume) nmeta.push_back({"resumed_from", double(resumed_from)});
   {
     std::lock_guard lock(ctx.stats_mutex);

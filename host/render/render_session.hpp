@@ -21,6 +21,8 @@ struct RenderOptions {
   std::optional<uint64_t> iterations;  // overrides the scene
   std::optional<double> time_seconds;  // overrides the scene
   std::optional<uint64_t> seed;        // overrides the scene
+  // Stop once the estimated relMSE of beauty (from odd/even half images, no reference) falls below it.
+  std::optional<double> target_error;
   uint32_t threads = 0;                // 0 = all cores
   std::vector<std::string> elements;   // in addition to the scene's
   std::string output_exr;              // PNG preview goes beside it (same stem)

@@ -58,7 +58,7 @@ TEST(Interrupt, CtrlCFinishesTheIterationAndWritesCompleteFiles) {
     EXPECT_EQ(px.size(), 64u * 48u) << c;
     for (float v : px) ASSERT_TRUE(std::isfinite(v)) << c;
   }
-  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"long.exr", "long.png"}));
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"long.exr", "long.exr.ckpt", "long.png"}));
 }
 
 TEST(Interrupt, EarlierOutputIsReplacedWholeNeverTruncated) {

@@ -61,8 +61,8 @@ TEST(RenderOutput, TinySceneWritesExrWithMetadataAndPngPreview) {
   EXPECT_GT(std::accumulate(px.begin(), px.end(), 0.0), 0.0);
   in->close();
 
-  // Exactly the two outputs: no temporaries left behind by the atomic writes.
-  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"box.exr", "box.png"}));
+  // Exactly the outputs (image, preview, checkpoint): no temporaries left behind by the atomic writes.
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"box.exr", "box.exr.ckpt", "box.png"}));
 }
 
 TEST(RenderOutput, QuietRenderPrintsNothing) {
