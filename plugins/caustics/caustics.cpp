@@ -7,6 +7,7 @@
 #include <nimbus/nimbus.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <string>
 
@@ -118,6 +119,8 @@ class CausticsSolver final : public sdk::Integrator {
     ids_.split_light = ids_.direct >= 0 || ids_.indirect >= 0 || ids_.emission >= 0 || ids_.caustics >= 0;
     ids_.lightmix = lightmix_ && lightmix_->is_active(h);
     records_.resize(info.worker_count);
+    region_pixels_.resize(info.worker_count);
+    for (auto &p : region_pixels_) p = 0;
     saw_sharp_.resize(info.worker_count);
     for (auto &s : saw_sharp_) s = 0;
     theta_pix_ = camera_->resolution(h, &width_, &height_);
@@ -142,7 +145,9 @@ class CausticsSolver final : public sdk::Integrator {
     if (!armed_) return NIMBUS_OK;
     const uint64_t paths = schedule_.plan(iteration);
     if (paths > 0) {
+      const auto t0 = std::chrono::steady_clock::now();
       if (nimbus_status_t s = photon_pass(paths); s != NIMBUS_OK) return s;
+      stats_.photon_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       schedule_.pass_done(iteration, map_paths_, map_photons_.size());
       if (schedule_.passes() == 1 && !photons_saw_sharp_ && !camera_saw_sharp()) schedule_.set_dormant(true);
     }
@@ -156,6 +161,7 @@ class CausticsSolver final : public sdk::Integrator {
     uint32_t width = 0, height = 0;
     camera_->resolution(h, &width, &height);
     SampleRecord &rec = records_[ctx];
+    region_pixels_[ctx] += uint64_t(tile.x1 - tile.x0) * (tile.y1 - tile.y0);
     for (uint32_t y = tile.y0; y < tile.y1; ++y)
       for (uint32_t x = tile.x0; x < tile.x1; ++x) {
         nimbus_rng_t rng;
@@ -177,12 +183,18 @@ class CausticsSolver final : public sdk::Integrator {
 
   nimbus_status_t end_iteration(uint64_t iteration) override {
     if (!armed_) return NIMBUS_OK;
+    // Camera paths of this iteration: the render region's pixels (tiles cover only the region).
+    uint64_t pixels = 0;
+    for (uint64_t &p : region_pixels_) pixels += p, p = 0;
+    schedule_.set_camera_paths(pixels);
     if (schedule_.dormant() && camera_saw_sharp()) schedule_.set_dormant(false);
     if (map_active_) {
+      // Useful pixels (spec 5): merges bring more than 1 % of the pixel's light. Pixels outside the
+      // region have Mp = Tp = 0 and never count.
       uint64_t useful = 0;
       for (size_t i = 0; i < useful_merge_.size(); ++i)
         useful += useful_merge_[i] > float(kUsefulThreshold) * useful_total_[i] ? 1 : 0;
-      schedule_.iteration_done(iteration, useful_merge_.empty() ? 0.0 : double(useful) / double(useful_merge_.size()));
+      schedule_.iteration_done(iteration, pixels ? std::min(1.0, double(useful) / double(pixels)) : 0.0);
       ++stats_.map_iterations;
     }
     return NIMBUS_OK;
@@ -195,6 +207,7 @@ class CausticsSolver final : public sdk::Integrator {
       progress_->stat_add(h, "caustics_photons", double(stats_.photons));
       progress_->stat_add(h, "caustics_photon_passes", double(stats_.passes));
       progress_->stat_add(h, "caustics_map_iterations", double(stats_.map_iterations));
+      progress_->stat_add(h, "caustics_photon_seconds", stats_.photon_seconds);
       const double bytes = stats_.photons > 0 ? double(stats_.photon_bytes) / double(stats_.photons)
                                               : double(sizeof(Photon));
       progress_->stat_add(h, "caustics_bytes_per_photon", bytes);
@@ -661,7 +674,7 @@ class CausticsSolver final : public sdk::Integrator {
   }
 
   // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel, MIS-weighted merges.
-  void merge(const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta, const CameraState &cam,
+  __attribute__((noinline)) void merge(const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta, const CameraState &cam,
              uint32_t s, SampleRecord &rec) const {
     const nimbus_host_t *h = host().get();
     const float r = cam.radius, r2 = r * r;
@@ -727,8 +740,10 @@ class CausticsSolver final : public sdk::Integrator {
   bool map_active_ = false;
   bool photons_saw_sharp_ = false;
   std::vector<float> useful_merge_, useful_total_;  // per pixel: accumulated lum of merges (Mp), beauty (Tp)
+  sdk::PerWorker<uint64_t> region_pixels_;  // pixels rendered this iteration (per worker)
   struct Stats {
     uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
+    double photon_seconds = 0;  // photon tracing and kd-tree builds
   } stats_;
 };
 

@@ -78,8 +78,9 @@ class PhotonKdTree {
     n_ = photons.size();
     uint32_t depth = 0;
     while (((n_ + (size_t(1) << depth) - 1) >> depth) > kLeafSize) ++depth;
-    axis_.assign((size_t(1) << (depth + 1)), 0);
-    split_.assign(axis_.size(), 0.0f);
+    nodes_.assign((size_t(1) << (depth + 1)), Node{});
+    lo_ = Vec3f(kInfinity), hi_ = Vec3f(-kInfinity);
+    for (const Photon &p : photons) lo_ = min(lo_, p.position()), hi_ = max(hi_, p.position());
     // Top levels on this thread, until there are enough subtrees to share out.
     constexpr uint32_t kSerialLevels = 6;
     std::vector<Range> pending;
@@ -90,7 +91,7 @@ class PhotonKdTree {
   size_t size() const { return n_; }
   const Photon *data() const { return photons_; }
   // Bytes of index structure (besides the photons themselves).
-  size_t index_bytes() const { return axis_.size() * (sizeof(uint8_t) + sizeof(float)); }
+  size_t index_bytes() const { return nodes_.size() * sizeof(Node); }
 
   // Calls f(photon, squared distance) for every photon with |p - q|^2 <= r^2 (computed in float as
   // dx*dx + dy*dy + dz*dz), in tree order.
@@ -98,30 +99,40 @@ class PhotonKdTree {
   void query(const Vec3f &q, float r, F &&f) const {
     if (n_ == 0 || !(r >= 0)) return;
     const float r2 = r * r;
-    Range stack[64];
+    // The whole map's bounds first: most lookups of a sparse map end here.
+    if (sqr(std::max({lo_.x - q.x, 0.0f, q.x - hi_.x})) + sqr(std::max({lo_.y - q.y, 0.0f, q.y - hi_.y})) +
+            sqr(std::max({lo_.z - q.z, 0.0f, q.z - hi_.z})) >
+        r2 * 1.0001f)
+      return;
+    struct Item {
+      uint32_t id, lo, hi;
+    };
+    Item stack[64];
     int top = 0;
-    stack[top++] = Range{0, 0, n_};
-    while (top > 0) {
-      const Range nd = stack[--top];
-      if (nd.hi - nd.lo <= kLeafSize) {
-        for (size_t i = nd.lo; i < nd.hi; ++i) {
-          const Photon &ph = photons_[i];
-          const float dx = ph.p[0] - q.x, dy = ph.p[1] - q.y, dz = ph.p[2] - q.z;
-          const float d2 = dx * dx + dy * dy + dz * dz;
-          if (d2 <= r2) f(ph, d2);
-        }
-        continue;
+    uint32_t id = 0, lo = 0, hi = uint32_t(n_);
+    for (;;) {
+      // Descend to the leaf containing q, remembering far children the sphere reaches.
+      while (hi - lo > kLeafSize) {
+        const Node nd = nodes_[id];
+        const uint32_t mid = lo + (hi - lo) / 2;
+        const float d = q[int(nd.axis)] - nd.split;
+        // Left holds p[a] <= split, right p[a] >= split. A point within r of q has |p[a] - q[a]| no
+        // smaller than |split - q[a]| on the far side (float subtraction is monotonic), and its
+        // computed d2 is no smaller than that square, so this never prunes a point the leaf accepts.
+        const bool right = d > 0;
+        if (d * d <= r2) stack[top++] = right ? Item{2 * id + 1, lo, mid} : Item{2 * id + 2, mid, hi};
+        id = right ? 2 * id + 2 : 2 * id + 1;
+        (right ? lo : hi) = mid;
       }
-      const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
-      const uint32_t a = axis_[nd.id];
-      const float d = q[int(a)] - split_[nd.id];
-      // Left holds p[a] <= split, right p[a] >= split. A point within r of q has |p[a] - q[a]| no
-      // smaller than |split - q[a]| on the far side (float subtraction is monotonic), and its computed
-      // d2 is no smaller than that square, so the test below never prunes a point the leaf would accept.
-      const bool near_left = d <= 0;
-      const Range left{2 * nd.id + 1, nd.lo, mid}, right{2 * nd.id + 2, mid, nd.hi};
-      if (d * d <= r2) stack[top++] = near_left ? right : left;
-      stack[top++] = near_left ? left : right;
+      for (uint32_t i = lo; i < hi; ++i) {
+        const Photon &ph = photons_[i];
+        const float dx = ph.p[0] - q.x, dy = ph.p[1] - q.y, dz = ph.p[2] - q.z;
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 <= r2) f(ph, d2);
+      }
+      if (top == 0) return;
+      const Item it = stack[--top];
+      id = it.id, lo = it.lo, hi = it.hi;
     }
   }
 
@@ -139,11 +150,11 @@ class PhotonKdTree {
     }
     const Vec3f ext = hi - lo;
     const uint32_t a = ext.x >= ext.y && ext.x >= ext.z ? 0u : (ext.y >= ext.z ? 1u : 2u);
-    axis_[nd.id] = uint8_t(a);
+    nodes_[nd.id].axis = a;
     const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
     std::nth_element(photons_ + nd.lo, photons_ + mid, photons_ + nd.hi,
                      [a](const Photon &x, const Photon &y) { return x.p[a] < y.p[a]; });
-    split_[nd.id] = photons_[mid].p[a];  // the children permute their ranges later: keep the value
+    nodes_[nd.id].split = photons_[mid].p[a];  // the children permute their ranges later: keep it
   }
 
   void split_top(const Range &nd, uint32_t levels, std::vector<Range> &out) {
@@ -173,8 +184,12 @@ class PhotonKdTree {
 
   Photon *photons_ = nullptr;
   size_t n_ = 0;
-  std::vector<uint8_t> axis_;  // split axis per internal node, heap order
-  std::vector<float> split_;   // split value per internal node
+  struct Node {
+    float split = 0;
+    uint32_t axis = 0;
+  };
+  std::vector<Node> nodes_;  // internal nodes in heap order
+  Vec3f lo_, hi_;            // bounds of all photons
 };
 
 }  // namespace nimbus::caustics

@@ -77,6 +77,9 @@ class PhotonSchedule {
   void set_dormant(bool d) { dormant_ = d; }
   bool dormant() const { return dormant_; }
 
+  // Camera paths per iteration (the render region's pixels), learnt after the first camera pass.
+  void set_camera_paths(uint64_t n) { cfg_.camera_paths = std::max<uint64_t>(1, n); }
+
   bool map_active() const { return active_; }
   uint32_t passes() const { return passes_; }  // j of the current map
   uint32_t idle_level() const { return idle_; }
