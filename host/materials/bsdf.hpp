@@ -53,7 +53,9 @@ class Bsdf {
   std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf> impl_;
 };
 
-// The BSDF a material has (textures come later: then this takes the surface point).
+// The BSDF a material has, with its constant albedo and roughness.
 Bsdf make_bsdf(const MaterialDesc &material);
+// The same with albedo and roughness given (by textures at a surface point; see textured_materials.hpp).
+Bsdf make_bsdf(const MaterialDesc &material, const Rgb &albedo, float roughness);
 
 }  // namespace nimbus

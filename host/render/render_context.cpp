@@ -13,6 +13,9 @@ Expected<std::unique_ptr<RenderContext>> RenderContext::build(const SceneDesc &d
   if (!lights) return lights.error();
   ctx->lights = std::move(lights.value());
   for (const MaterialDesc &m : desc.materials) ctx->bsdfs.push_back(make_bsdf(m));
+  auto textures = TexturedMaterials::build(desc.materials);
+  if (!textures) return textures.error();
+  ctx->textures = std::move(textures.value());
   ctx->camera = Camera(desc.camera, desc.render.width, desc.render.height);
   const std::string &f = desc.render.filter;
   if (f == "box") {

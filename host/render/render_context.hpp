@@ -18,6 +18,7 @@
 #include "geometry/geometry_scene.hpp"
 #include "lights/light_set.hpp"
 #include "materials/bsdf.hpp"
+#include "materials/textured_materials.hpp"
 #include "render/camera.hpp"
 #include "render/error_estimate.hpp"
 #include "render/pixel_filter.hpp"
@@ -31,7 +32,8 @@ struct RenderContext {
   const SceneDesc *desc = nullptr;
   std::unique_ptr<GeometryScene> geometry;
   LightSet lights;
-  std::vector<Bsdf> bsdfs;  // one per scene material
+  std::vector<Bsdf> bsdfs;                      // one per scene material
+  std::unique_ptr<TexturedMaterials> textures;  // null unless a material reads a texture
   Camera camera;
   PixelFilter filter;
   std::unique_ptr<Film> film;

@@ -1,4 +1,29 @@
 // `materials:` — a map from name to {type: diffuse | conductor | dielectric, ...}.
+//
+// Textures. A constant can be replaced by an image file, read through OpenImageIO (EXR, HDR, PNG, JPEG,
+// TIFF, ...) when the scene is built; a missing or unreadable file is an error naming it and the reason.
+//
+//   floor:  { type: diffuse, albedo: { texture: assets/wood.png } }          # or albedo: [r, g, b]
+//   steel:  { type: conductor, metal: iron, roughness: { texture: r.exr } }  # or roughness: 0.3
+//   tiles:  { type: diffuse, albedo: { texture: t.jpg }, normal_map: maps/n.png, uv_scale: [4, 4] }
+//
+//   albedo: { texture: PATH }     diffuse only. Colour: files stored as 8- or 16-bit integers (PNG, JPEG)
+//                                 are sRGB-encoded and decoded to linear; float files (EXR, HDR) are
+//                                 linear. One channel is grey; a fourth (alpha) is ignored. Clamped to
+//                                 [0, 1] like the constant: more would reflect more light than arrives.
+//   roughness: { texture: PATH }  conductor and dielectric. The first channel, as data (no decoding),
+//                                 clamped to [0, 1]; same meaning as the number it replaces.
+//   normal_map: PATH              any type (also written { texture: PATH }). Tangent-space normals as data,
+//                                 n = 2 rgb - 1, OpenGL convention: red = +u (along dpdu), green = +v (up
+//                                 in the image), blue = out of the surface; (0.5, 0.5, 1) changes nothing.
+//   uv_scale: [su, sv] or s       > 0; the texture repeats su times along u and sv times along v. Only
+//                                 with a texture (otherwise it would be silently ignored).
+//
+// Paths are relative to the file that names them. A surface point (u, v) reads the image at (u su, v sv),
+// repeating periodically, with v = 0 at the bottom row of the image (the OBJ convention): an image on a
+// `rectangle` reads upright seen from its front with +y up. Filtering is bilinear on the finest level
+// (colour decoded before filtering); the progressive loop's pixel jitter integrates the pixel footprint.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -11,9 +36,53 @@ namespace {
 
 const Range kUnit = Range::closed(0, 1);
 
+// The image file a scalar names, resolved against the directory of the file that names it.
+TextureDesc texture_file(const YamlValue &file) {
+  TextureDesc t;
+  // Absolute, so that errors name the file unambiguously whatever the working directory.
+  const std::filesystem::path path = file.source().resolve(file.nonempty_string());
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  t.path = (ec ? path : absolute).lexically_normal().string();
+  t.key = file.path();
+  t.where = file.location();
+  return t;
+}
+
+// `{ texture: PATH }`
+TextureDesc read_texture(const YamlValue &v) { return texture_file(v.map({"texture"}).require("texture")); }
+
+// Keys every material type accepts besides its own; after those, so that uv_scale knows of all textures.
+void read_common(const YamlMap &m, MaterialDesc &mat) {
+  if (auto v = m.get("normal_map")) mat.normal_map = v->is_map() ? read_texture(*v) : texture_file(*v);
+  if (auto v = m.get("uv_scale")) {
+    if (!mat.textured()) m.key("uv_scale").fail("needs a texture (albedo, roughness or normal_map) to scale");
+    if (v->is_sequence()) {
+      mat.uv_scale = v->vec2(Range::greater_than(0));
+    } else {
+      const float scale = v->real(Range::greater_than(0));
+      mat.uv_scale = {scale, scale};
+    }
+  }
+}
+
+void read_roughness(const YamlMap &m, MaterialDesc &mat) {
+  if (auto v = m.get("roughness")) {
+    if (v->is_map())
+      mat.roughness_texture = read_texture(*v);
+    else
+      mat.roughness = v->real(kUnit);
+  }
+}
+
 void read_diffuse(const YamlMap &m, MaterialDesc &mat) {
-  m.check_keys({"type", "albedo"}, "a diffuse material");
-  if (auto v = m.get("albedo")) mat.albedo = v->rgb(kUnit);
+  m.check_keys({"type", "albedo", "normal_map", "uv_scale"}, "a diffuse material");
+  if (auto v = m.get("albedo")) {
+    if (v->is_map())
+      mat.albedo_texture = read_texture(*v);
+    else
+      mat.albedo = v->rgb(kUnit);
+  }
 }
 
 std::string known_metals() {
@@ -25,7 +94,8 @@ std::string known_metals() {
 // A conductor is described exactly one way: a named metal, a complex IOR (eta and k together), or an ideal
 // mirror's reflectance. Mixing them would leave one silently ignored, so it is an error.
 void read_conductor(const YamlMap &m, MaterialDesc &mat) {
-  m.check_keys({"type", "metal", "eta", "k", "reflectance", "roughness"}, "a conductor");
+  m.check_keys({"type", "metal", "eta", "k", "reflectance", "roughness", "normal_map", "uv_scale"},
+               "a conductor");
   const auto form_of = [](const std::string &key) -> std::string_view {
     if (key == "eta" || key == "k") return "eta";
     if (key == "metal" || key == "reflectance") return key;
@@ -57,14 +127,14 @@ void read_conductor(const YamlMap &m, MaterialDesc &mat) {
     mat.use_reflectance = true;
     mat.reflectance = v->rgb(kUnit);
   }
-  if (auto v = m.get("roughness")) mat.roughness = v->real(kUnit);
+  read_roughness(m, mat);
 }
 
 void read_dielectric(const YamlMap &m, MaterialDesc &mat) {
-  m.check_keys({"type", "ior", "roughness"}, "a dielectric");
+  m.check_keys({"type", "ior", "roughness", "normal_map", "uv_scale"}, "a dielectric");
   // Relative IORs below 1 (e.g. an air bubble in water) need nested media, which v0 does not model.
   if (auto v = m.get("ior")) mat.ior = v->real(Range::closed(1, 10));
-  if (auto v = m.get("roughness")) mat.roughness = v->real(kUnit);
+  read_roughness(m, mat);
 }
 
 }  // namespace
@@ -93,6 +163,7 @@ std::vector<MaterialDesc> read_materials(const YamlValue &section) {
     } else {
       type.fail("unknown material type '" + abbreviate(name) + "'; known: diffuse, conductor, dielectric");
     }
+    read_common(m, mat);
     out.push_back(std::move(mat));
   }
   return out;

@@ -1,22 +1,19 @@
-// `shape: mesh` — triangles written inline (positions, indices, optional normals and uvs) or read from an
-// OBJ file named relative to the scene file.
+// `shape: mesh` and `meshes:` entries — triangles written inline (positions, indices, optional normals and
+// uvs) or read from an OBJ or glTF file named relative to the scene file.
 #include <cmath>
 #include <string>
 
-#include "scene/obj_loader.hpp"
 #include "scene/sections.hpp"
 
 namespace nimbus::scene_yaml {
 
 namespace {
 
-MeshData read_mesh_file(const YamlMap &m, const YamlValue &file) {
+std::shared_ptr<const LoadedMesh> read_mesh_file(const YamlMap &m, const YamlValue &file,
+                                                 MeshLibrary &library) {
   for (const char *other : {"positions", "indices", "normals", "uvs"})
     if (m.has(other)) m.key(other).fail("cannot be combined with 'file'");
-  const std::filesystem::path path = file.source().resolve(file.nonempty_string());
-  Expected<MeshData> mesh = load_obj_mesh(path);
-  if (!mesh) file.fail("cannot load mesh '" + path.string() + "': " + mesh.error().message);
-  return std::move(mesh).value();
+  return library.load(file);
 }
 
 // Indices as a flat list [i, j, k, ...] or as triangles [[i, j, k], ...]; every one must name a position.
@@ -55,12 +52,13 @@ std::vector<YamlValue> per_vertex(const YamlValue &v, size_t num_positions, std:
 
 }  // namespace
 
-MeshData read_mesh(const YamlMap &m) {
-  if (auto file = m.get("file")) return read_mesh_file(m, *file);
+std::shared_ptr<const LoadedMesh> read_mesh(const YamlMap &m, MeshLibrary &library) {
+  if (auto file = m.get("file")) return read_mesh_file(m, *file, library);
   if (!m.has("positions") && !m.has("indices"))
     m.self().fail("a mesh needs 'file', or 'positions' and 'indices'");
 
-  MeshData mesh;
+  auto loaded = std::make_shared<LoadedMesh>();
+  MeshData &mesh = loaded->mesh;
   for (const YamlValue &p : m.require("positions").sequence()) mesh.positions.push_back(p.vec3());
   mesh.indices = read_indices(m.require("indices"), mesh.positions.size());
   if (auto normals = m.get("normals")) {
@@ -72,7 +70,17 @@ MeshData read_mesh(const YamlMap &m) {
   }
   if (auto uvs = m.get("uvs"))
     for (const YamlValue &uv : per_vertex(*uvs, mesh.positions.size(), "uvs")) mesh.uvs.push_back(uv.vec2());
-  return mesh;
+  return loaded;
+}
+
+void read_meshes(const YamlValue &section, MeshLibrary &library) {
+  if (section.is_null()) return;
+  const YamlMap meshes = section.map();
+  for (const YamlMap::Entry &e : meshes.entries()) {
+    if (e.key.empty()) e.key_value.fail("mesh names must not be empty");
+    const YamlMap m = e.value.map({"file", "positions", "indices", "normals", "uvs"});
+    library.add(e.key, read_mesh(m, library), e.key_value);
+  }
 }
 
 }  // namespace nimbus::scene_yaml

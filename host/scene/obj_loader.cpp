@@ -32,15 +32,21 @@ Vec3f vec3_at(const std::vector<tinyobj::real_t> &values, size_t index) {
   return {float(values[3 * index]), float(values[3 * index + 1]), float(values[3 * index + 2])};
 }
 
-}  // namespace
+// The file read and every face corner checked, shared by both readers below.
+struct ParsedObj {
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  bool all_normals = true, all_uvs = true;
+};
 
-Expected<MeshData> load_obj_mesh(const std::filesystem::path &path) {
+Expected<ParsedObj> parse_obj(const std::filesystem::path &path) {
   errno = 0;
   std::ifstream in(path);
   if (!in) return Error{open_failure(path)};
 
-  tinyobj::attrib_t attrib;
-  std::vector<tinyobj::shape_t> shapes;
+  ParsedObj obj;
+  tinyobj::attrib_t &attrib = obj.attrib;
+  std::vector<tinyobj::shape_t> &shapes = obj.shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
   // No triangulation by tinyobjloader: it skips quads with bad indices silently and reads vertices before
@@ -58,7 +64,6 @@ Expected<MeshData> load_obj_mesh(const std::filesystem::path &path) {
       return Error{"vertex " + std::to_string(i + 1) + " is not a finite single-precision number"};
 
   // Validate every face corner and decide whether normals and uvs can be used.
-  bool all_normals = true, all_uvs = true;
   size_t face_number = 0, triangles = 0;
   for (const tinyobj::shape_t &shape : shapes) {
     size_t corner = 0;
@@ -78,14 +83,25 @@ Expected<MeshData> load_obj_mesh(const std::filesystem::path &path) {
           return Error{"face " + std::to_string(face_number) + " refers to texture coordinate " +
                        std::to_string(idx.texcoord_index + 1) + " but the file has " +
                        std::to_string(num_uvs)};
-        all_normals &= idx.normal_index >= 0;
-        all_uvs &= idx.texcoord_index >= 0;
+        obj.all_normals &= idx.normal_index >= 0;
+        obj.all_uvs &= idx.texcoord_index >= 0;
       }
       if (n >= 3) triangles += n - 2;
       corner += n;
     }
   }
   if (triangles == 0) return Error{"the file has no faces"};
+  return obj;
+}
+
+}  // namespace
+
+Expected<MeshData> load_obj_mesh(const std::filesystem::path &path) {
+  Expected<ParsedObj> parsed = parse_obj(path);
+  if (!parsed) return parsed.error();
+  const tinyobj::attrib_t &attrib = parsed->attrib;
+  const std::vector<tinyobj::shape_t> &shapes = parsed->shapes;
+  const bool all_normals = parsed->all_normals, all_uvs = parsed->all_uvs;
 
   // OBJ indexes positions, normals and uvs separately; MeshData shares one index, so each distinct
   // (position, normal, uv) corner becomes one vertex.
@@ -123,6 +139,24 @@ Expected<MeshData> load_obj_mesh(const std::filesystem::path &path) {
     }
   }
   return mesh;
+}
+
+Expected<PolygonMesh> load_obj_polygons(const std::filesystem::path &path) {
+  Expected<ParsedObj> parsed = parse_obj(path);
+  if (!parsed) return parsed.error();
+  PolygonMesh out;
+  const std::vector<tinyobj::real_t> &v = parsed->attrib.vertices;
+  for (size_t i = 0; i < v.size() / 3; ++i) out.positions.push_back(vec3_at(v, i));
+  for (const tinyobj::shape_t &shape : parsed->shapes) {
+    size_t corner = 0;
+    for (unsigned char n : shape.mesh.num_face_vertices) {
+      out.face_sizes.push_back(n);
+      for (size_t c = corner; c < corner + n; ++c)
+        out.indices.push_back(uint32_t(shape.mesh.indices[c].vertex_index));
+      corner += n;
+    }
+  }
+  return out;
 }
 
 }  // namespace nimbus

@@ -1,5 +1,6 @@
 // `objects:` — a list of shapes with a material, an optional transform and optional emission. Transforms
-// are applied here, so every ShapeDesc leaves the parser in world space.
+// are applied here, so every ShapeDesc leaves the parser in world space. Meshes, instances of named meshes
+// and subdivision surfaces all become ShapeType::Mesh: triangles, each object with its own copy.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -11,7 +12,7 @@ namespace nimbus::scene_yaml {
 
 namespace {
 
-const char *const kShapes = "sphere, rectangle, box, disk, mesh";
+const char *const kShapes = "sphere, rectangle, box, disk, mesh, instance, subdivision";
 
 // The keys every shape accepts plus those specific to it.
 std::vector<std::string_view> keys_with(std::initializer_list<std::string_view> specific) {
@@ -47,7 +48,7 @@ float uniform_scale(const Transform &t, const YamlValue &transform, std::string_
       format_number(scales.x) + ", " + format_number(scales.y) + ", " + format_number(scales.z) + ")");
 }
 
-ShapeDesc read_object(const YamlValue &object, const std::vector<MaterialDesc> &materials) {
+ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
   const YamlMap m = object.map();
   const YamlValue shape_value = m.require("shape");
   const std::string shape = shape_value.string();
@@ -68,11 +69,17 @@ ShapeDesc read_object(const YamlValue &object, const std::vector<MaterialDesc> &
   } else if (shape == "mesh") {
     s.type = ShapeType::Mesh;
     m.check_keys(keys_with({"file", "positions", "indices", "normals", "uvs"}), "a mesh");
+  } else if (shape == "instance") {
+    s.type = ShapeType::Mesh;
+    m.check_keys(keys_with({"mesh"}), "an instance");
+  } else if (shape == "subdivision") {
+    s.type = ShapeType::Mesh;
+    m.check_keys(keys_with({"file", "positions", "faces", "scheme", "level", "creases"}),
+                 "a subdivision surface");
   } else {
     shape_value.fail("unknown shape '" + abbreviate(shape) + "'; known: " + kShapes);
   }
 
-  s.material = find_material(m.require("material"), materials);
   if (auto v = m.get("emission"))
     s.emission = v->map({"radiance"}).require("radiance").rgb(Range::at_least(0));
   if (auto v = m.get("two_sided")) s.two_sided = v->boolean();
@@ -80,6 +87,18 @@ ShapeDesc read_object(const YamlValue &object, const std::vector<MaterialDesc> &
 
   const std::optional<YamlValue> transform_value = m.get("transform");
   const Transform transform = transform_value ? read_transform(*transform_value) : Transform();
+
+  // Meshes from files and names first: a glTF mesh brings a material for objects that name none.
+  std::shared_ptr<const LoadedMesh> loaded;
+  if (shape == "mesh") loaded = read_mesh(m, context.meshes);
+  if (shape == "instance") loaded = context.meshes.find(m.require("mesh"));
+  if (auto v = m.get("material"))
+    s.material = find_material(*v, context.materials);
+  else if (loaded && loaded->material)
+    s.material =
+        gltf_material(*loaded->material, *loaded, m.require(shape == "mesh" ? "file" : "mesh"), context);
+  else
+    s.material = find_material(m.require("material"), context.materials);
 
   switch (s.type) {
     case ShapeType::Sphere:
@@ -104,7 +123,7 @@ ShapeDesc read_object(const YamlValue &object, const std::vector<MaterialDesc> &
       break;
     }
     case ShapeType::Mesh:
-      s.mesh = read_mesh(m);
+      s.mesh = loaded ? loaded->mesh : read_subdivision(m, transform, context.camera, context.render);
       break;
   }
 
@@ -120,10 +139,10 @@ ShapeDesc read_object(const YamlValue &object, const std::vector<MaterialDesc> &
 
 }  // namespace
 
-std::vector<ShapeDesc> read_objects(const YamlValue &section, const std::vector<MaterialDesc> &materials) {
+std::vector<ShapeDesc> read_objects(const YamlValue &section, ObjectContext &context) {
   std::vector<ShapeDesc> out;
   if (section.is_null()) return out;
-  for (const YamlValue &object : section.sequence()) out.push_back(read_object(object, materials));
+  for (const YamlValue &object : section.sequence()) out.push_back(read_object(object, context));
   return out;
 }
 

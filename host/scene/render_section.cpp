@@ -1,4 +1,5 @@
-// `render:` — image size, stopping rule, seed, path length, integrator and its options, film elements.
+// `render:` — image size, stopping rule, seed, path length, integrator and its options, film elements,
+// pixel filter, render region and light sampler.
 #include <algorithm>
 #include <cctype>
 #include <string>
@@ -11,6 +12,7 @@ namespace {
 
 constexpr int64_t kMaxResolution = 16384;
 constexpr int64_t kMaxDepth = 1024;
+const std::vector<std::string_view> kFilters{"box", "gaussian", "blackman-harris"};
 
 // `caustics: on|off` is the only integrator option v0 knows. Kept as written in RenderDesc::options
 // ("on"/"off"); YAML booleans are accepted because `on` and `true` read the same to users.
@@ -24,13 +26,26 @@ std::string read_switch(const YamlValue &v) {
   v.fail("expected on or off, got " + v.describe());
 }
 
+// [x0, y0, x1, y1] in pixels, half-open ([x0, x1) x [y0, y1)), inside the image. Checked against the
+// resolution of the same section, so the order of the keys does not matter.
+void read_region(const YamlValue &v, RenderDesc &r) {
+  const std::vector<YamlValue> c = v.sequence_of(4, "[x0, y0, x1, y1]");
+  const uint32_t size[2] = {r.width, r.height};
+  for (int i = 0; i < 4; ++i) {
+    const uint32_t limit = size[i % 2];
+    r.region[i] = uint32_t(c[size_t(i)].integer(Range::closed(0, double(limit))));
+  }
+  if (r.region[2] <= r.region[0]) c[2].fail("x1 must be greater than x0 (got " + c[0].shown() + ")");
+  if (r.region[3] <= r.region[1]) c[3].fail("y1 must be greater than y0 (got " + c[1].shown() + ")");
+}
+
 }  // namespace
 
 RenderDesc read_render(const YamlValue &section) {
   RenderDesc r;
   if (section.is_null()) return r;  // `render:` with nothing under it: all defaults
-  const YamlMap m = section.map(
-      {"resolution", "iterations", "time", "seed", "max_depth", "integrator", "elements", "caustics"});
+  const YamlMap m = section.map({"resolution", "iterations", "time", "target_error", "seed", "max_depth",
+                                 "integrator", "caustics", "elements", "filter", "region", "light_sampler"});
 
   if (auto v = m.get("resolution")) {
     const std::vector<YamlValue> wh = v->sequence_of(2, "[width, height]");
@@ -39,6 +54,7 @@ RenderDesc read_render(const YamlValue &section) {
   }
   if (auto v = m.get("iterations")) r.iterations = uint64_t(v->integer(Range::at_least(1)));
   if (auto v = m.get("time")) r.time_seconds = v->number(Range::greater_than(0));
+  if (auto v = m.get("target_error")) r.target_error = v->number(Range::greater_than(0));
   if (auto v = m.get("seed")) r.seed = uint64_t(v->integer(Range::at_least(0)));
   if (auto v = m.get("max_depth")) r.max_depth = uint32_t(v->integer(Range::closed(1, kMaxDepth)));
   if (auto v = m.get("integrator")) r.integrator = v->nonempty_string();
@@ -52,6 +68,14 @@ RenderDesc read_render(const YamlValue &section) {
       r.elements.push_back(std::move(name));
     }
   }
+  if (auto v = m.get("filter")) {
+    r.filter = v->string();
+    if (std::find(kFilters.begin(), kFilters.end(), r.filter) == kFilters.end())
+      v->fail("unknown pixel filter '" + abbreviate(r.filter) + "'; known: " + join_names(kFilters));
+  }
+  if (auto v = m.get("region")) read_region(*v, r);
+  // A plugin id; whether such a plugin exists is only known once plugins are loaded.
+  if (auto v = m.get("light_sampler")) r.light_sampler = v->nonempty_string();
   return r;
 }
 

@@ -24,6 +24,7 @@ struct RenderDesc {
   uint32_t width = 512, height = 512;
   uint64_t iterations = 0;     // 0 = not set (then time or the CLI decides; default 64)
   double time_seconds = 0;     // 0 = no time budget
+  double target_error = 0;     // relMSE estimate to stop at; 0 = no error target
   uint64_t seed = 1;
   uint32_t max_depth = 16;     // path length in segments: a camera ray that hits a light is 1
   std::string integrator = "pt";  // short name (pt, lt, caustics) or full plugin id
@@ -47,6 +48,15 @@ struct CameraDesc {
 
 enum class MaterialType { Diffuse, Conductor, Dielectric };
 
+// An image a material reads at every surface point. The file is opened when the scene is built, so its
+// errors come after parsing: `key` and `where` let them still name the place in the scene.
+struct TextureDesc {
+  std::string path;  // absolute after parsing; empty = no texture
+  std::string key;   // e.g. "materials.floor.albedo.texture"
+  SourceLocation where;
+  bool empty() const { return path.empty(); }
+};
+
 struct MaterialDesc {
   std::string name;
   MaterialType type = MaterialType::Diffuse;
@@ -59,6 +69,15 @@ struct MaterialDesc {
   Rgb reflectance{1, 1, 1};
   float ior = 1.5f;        // dielectric
   float roughness = 0;     // conductor and dielectric: user-facing roughness in [0, 1]; GGX alpha = r^2
+  // Textures replace the constant above them where present (host/scene/materials_section.cpp has the
+  // syntax and conventions). Lookups use (u, v) * uv_scale with v = 0 at the bottom of the image.
+  TextureDesc albedo_texture;     // diffuse; colour (8/16-bit files are sRGB-decoded)
+  TextureDesc roughness_texture;  // conductor, dielectric; first channel, as data
+  TextureDesc normal_map;         // any type; tangent space, OpenGL convention (green = +v)
+  Vec2f uv_scale{1, 1};
+  bool textured() const {
+    return !albedo_texture.empty() || !roughness_texture.empty() || !normal_map.empty();
+  }
   SourceLocation where;
 };
 

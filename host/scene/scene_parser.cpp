@@ -1,12 +1,11 @@
 #include "scene/scene_parser.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
+#include <iterator>
+#include <string>
 
 #include <yaml-cpp/yaml.h>
 
+#include "scene/scene_includes.hpp"
 #include "scene/sections.hpp"
 #include "scene/yaml_document.hpp"
 
@@ -19,6 +18,28 @@ using scene_yaml::SceneSource;
 using scene_yaml::YamlMap;
 using scene_yaml::YamlValue;
 
+std::string where_text(const SourceLocation &w) {
+  return w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column);
+}
+
+// Materials of every file share one namespace, so that objects anywhere can name them.
+void append_materials(const YamlValue &section, std::vector<MaterialDesc> &materials) {
+  for (MaterialDesc &m : scene_yaml::read_materials(section)) {
+    for (const MaterialDesc &other : materials)
+      if (other.name == m.name)
+        throw ParseFailure{scene_yaml::format_error(
+            m.where.file, m.where.line, m.where.column, "materials." + scene_yaml::abbreviate(m.name),
+            "material '" + scene_yaml::abbreviate(m.name) + "' is already defined at " +
+                where_text(other.where))};
+    materials.push_back(std::move(m));
+  }
+}
+
+template <class T>
+void append(std::vector<T> &to, std::vector<T> &&from) {
+  to.insert(to.end(), std::make_move_iterator(from.begin()), std::make_move_iterator(from.end()));
+}
+
 SceneDesc read_scene(const YAML::Node &document, const SceneSource &source) {
   SceneDesc scene;
   scene.path = source.display_name;
@@ -28,14 +49,25 @@ SceneDesc read_scene(const YAML::Node &document, const SceneSource &source) {
   if (!root.is_map())
     throw ParseFailure{scene_yaml::format_error(source.display_name, root.line(), root.column(), "scene",
                                                 "expected a map of sections, got " + root.describe())};
-  const YamlMap sections = root.map({"render", "camera", "materials", "objects", "lights"});
+  const scene_yaml::SceneFiles files(root);
+  const YamlMap &main = files.main().sections;
+  const auto each = [&](std::string_view section, const auto &read) {
+    for (const scene_yaml::SceneFile &file : files.files())
+      if (auto v = file.sections.get(section)) read(*v);
+  };
 
-  // Materials first: objects refer to them by name wherever they appear in the file.
-  if (auto v = sections.get("materials")) scene.materials = scene_yaml::read_materials(*v);
-  if (auto v = sections.get("render")) scene.render = scene_yaml::read_render(*v);
-  if (auto v = sections.get("camera")) scene.camera = scene_yaml::read_camera(*v);
-  if (auto v = sections.get("objects")) scene.shapes = scene_yaml::read_objects(*v, scene.materials);
-  if (auto v = sections.get("lights")) scene.lights = scene_yaml::read_lights(*v);
+  // Materials and named meshes first: objects refer to them by name wherever they appear. Render and
+  // camera before objects too: `level: auto` of subdivision surfaces depends on them. Lights before the
+  // environment: a sky takes its sun from the sun light.
+  each("materials", [&](const YamlValue &v) { append_materials(v, scene.materials); });
+  if (auto v = main.get("render")) scene.render = scene_yaml::read_render(*v);
+  if (auto v = main.get("camera")) scene.camera = scene_yaml::read_camera(*v);
+  scene_yaml::MeshLibrary meshes;
+  each("meshes", [&](const YamlValue &v) { scene_yaml::read_meshes(v, meshes); });
+  each("lights", [&](const YamlValue &v) { append(scene.lights, scene_yaml::read_lights(v)); });
+  if (auto v = main.get("environment")) scene.environment = scene_yaml::read_environment(*v, scene.lights);
+  scene_yaml::ObjectContext objects{scene.materials, meshes, scene.camera, scene.render, {}};
+  each("objects", [&](const YamlValue &v) { append(scene.shapes, scene_yaml::read_objects(v, objects)); });
   return scene;
 }
 
@@ -59,23 +91,14 @@ Expected<SceneDesc> parse_text(const std::string &yaml, const SceneSource &sourc
 }  // namespace
 
 Expected<SceneDesc> parse_scene_file(const std::string &path) {
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  std::error_code ec;
-  if (!in || std::filesystem::is_directory(path, ec)) {
-    const std::string reason = std::filesystem::is_directory(path, ec) ? "is a directory"
-                               : errno != 0                            ? std::strerror(errno)
-                                                                       : "cannot open";
-    return Error{scene_yaml::format_error(path, 0, 0, "", "cannot read scene file: " + reason)};
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return Error{scene_yaml::format_error(path, 0, 0, "", "cannot read scene file: read error")};
-  return parse_text(text.str(), SceneSource{path, std::filesystem::path(path).parent_path()});
+  Expected<std::string> text = scene_yaml::read_text_file(path);
+  if (!text)
+    return Error{scene_yaml::format_error(path, 0, 0, "", "cannot read scene file: " + text.error().message)};
+  return parse_text(*text, SceneSource{path, std::filesystem::path(path).parent_path(), path});
 }
 
 Expected<SceneDesc> parse_scene_string(const std::string &yaml, const std::string &display_name) {
-  return parse_text(yaml, SceneSource{display_name, {}});
+  return parse_text(yaml, SceneSource{display_name, {}, {}});
 }
 
 }  // namespace nimbus

@@ -2,25 +2,54 @@
 // (see yaml_value.hpp); parse_scene_* turns that into an Error value.
 #pragma once
 
+#include <map>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "core/transform.hpp"
+#include "scene/mesh_library.hpp"
 #include "scene/scene_desc.hpp"
 #include "scene/yaml_value.hpp"
 
 namespace nimbus::scene_yaml {
 
+// What objects refer to: materials by name (glTF objects without `material:` add their file's material),
+// named and file meshes, and the camera and resolution (for `level: auto` of subdivision surfaces).
+struct ObjectContext {
+  std::vector<MaterialDesc> &materials;
+  MeshLibrary &meshes;
+  const CameraDesc &camera;
+  const RenderDesc &render;
+  // Materials made from glTF materials, by "<absolute file>#<material index>": made once, shared.
+  std::map<std::string, uint32_t> gltf_materials;
+};
+
 RenderDesc read_render(const YamlValue &section);                    // render_section.cpp
 CameraDesc read_camera(const YamlValue &section);                    // camera_section.cpp
 std::vector<MaterialDesc> read_materials(const YamlValue &section);  // materials_section.cpp
-std::vector<ShapeDesc> read_objects(const YamlValue &section,        // objects_section.cpp
-                                    const std::vector<MaterialDesc> &materials);
-std::vector<LightDesc> read_lights(const YamlValue &section);  // lights_section.cpp
+void read_meshes(const YamlValue &section, MeshLibrary &library);    // mesh_section.cpp
+std::vector<ShapeDesc> read_objects(const YamlValue &section, ObjectContext &context);  // objects_section.cpp
+std::vector<LightDesc> read_lights(const YamlValue &section);                           // lights_section.cpp
+// `lights` are all the scene's lights: a sky takes its sun from them.    // environment_section.cpp
+EnvironmentDesc read_environment(const YamlValue &section, const std::vector<LightDesc> &lights);
 
 // `transform:` of an object: {translate, rotate, scale} or {matrix}.      // transform_section.cpp
 Transform read_transform(const YamlValue &value);
 
-// The triangles of a `shape: mesh` object in object space: inline arrays or an OBJ file.  // mesh_section.cpp
-MeshData read_mesh(const YamlMap &object);
+// The triangles of a `shape: mesh` object or a `meshes:` entry in its own coordinates: inline arrays or an
+// OBJ or glTF file (read once per scene through `library`).                  // mesh_section.cpp
+std::shared_ptr<const LoadedMesh> read_mesh(const YamlMap &object, MeshLibrary &library);
+
+// The triangles of a `shape: subdivision` object in object space; `to_world`, the camera and the
+// resolution decide `level: auto`.                                           // subdivision_section.cpp
+MeshData read_subdivision(const YamlMap &object, const Transform &to_world, const CameraDesc &camera,
+                          const RenderDesc &render);
+
+// The scene material for a glTF material (see gltf_material.cpp for the mapping), made once per file and
+// material and appended to context.materials; returns its index. `where` is the value that named the mesh
+// (`file:` or `mesh:`), which the material's location and texture key refer to.   // gltf_material.cpp
+uint32_t gltf_material(const GltfMaterial &material, const LoadedMesh &mesh, const YamlValue &where,
+                       ObjectContext &context);
 
 }  // namespace nimbus::scene_yaml

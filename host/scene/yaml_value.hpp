@@ -27,10 +27,11 @@ struct ParseFailure {
 };
 
 // Where the YAML text came from: the name printed in errors and the directory relative asset paths
-// (mesh files) resolve against.
+// (mesh files, included files) resolve against.
 struct SceneSource {
   std::string display_name;
   std::filesystem::path base_dir;
+  std::filesystem::path file;  // the file the text was read from; empty for text given directly
 
   std::filesystem::path resolve(const std::string &relative_or_absolute) const;
 };

@@ -80,6 +80,7 @@ class CausticsSolver final : public sdk::Integrator {
     }
     float center[3];
     scene_radius_ = scene_->bounding_sphere(h, center);
+    scene_center_ = Vec3f::load(center);
     infinite_.clear();
     light_group_.clear();
     std::vector<Emitter> emitters;
@@ -92,7 +93,7 @@ class CausticsSolver final : public sdk::Integrator {
       light_group_.push_back(info.group);
       emitters.push_back(make_emitter(info));
     }
-    emitters_.build(std::move(emitters), scene_radius_);
+    emitters_.build(std::move(emitters), scene_center_, scene_radius_);
     registered_ = {};
     registered_.direct = film_->register_element(h, "direct", 3, NIMBUS_ELEMENT_AVERAGE);
     registered_.indirect = film_->register_element(h, "indirect", 3, NIMBUS_ELEMENT_AVERAGE);
@@ -137,6 +138,8 @@ class CausticsSolver final : public sdk::Integrator {
     map_ = PhotonKdTree();
     map_active_ = false;
     emitter_pdfs_known_ = false;
+    next_disk_ = {};
+    emitters_.set_disk(scene_center_, scene_radius_);
     stats_ = {};
     return NIMBUS_OK;
   }
@@ -239,6 +242,7 @@ class CausticsSolver final : public sdk::Integrator {
     std::vector<Photon> photons;
     uint64_t paths = 0;  // completed paths
     bool saw_sharp = false;
+    Vec3f sharp_lo{kInfinity}, sharp_hi{-kInfinity};  // bounds of the sharp vertices met
   };
 
   // P_pos of area lights: one sample_emission per light (uniform area sampling: constant).
@@ -263,6 +267,7 @@ class CausticsSolver final : public sdk::Integrator {
     const nimbus_host_t *h = host().get();
     learn_emitter_pdfs();
     const uint32_t pass = schedule_.passes() + 1;
+    if (next_disk_.radius > 0) emitters_.set_disk(next_disk_.center, next_disk_.radius), next_disk_ = {};
     const uint64_t tasks = (paths + kPhotonPathsPerTask - 1) / kPhotonPathsPerTask;
     std::vector<PhotonChunk> chunks(tasks);
     struct Job {
@@ -286,7 +291,19 @@ class CausticsSolver final : public sdk::Integrator {
     size_t total = 0;
     uint64_t done = 0;
     bool sharp = false;
-    for (const PhotonChunk &c : chunks) total += c.photons.size(), done += c.paths, sharp |= c.saw_sharp;
+    Vec3f sharp_lo(kInfinity), sharp_hi(-kInfinity);
+    for (const PhotonChunk &c : chunks) {
+      total += c.photons.size(), done += c.paths, sharp |= c.saw_sharp;
+      sharp_lo = min(sharp_lo, c.sharp_lo), sharp_hi = max(sharp_hi, c.sharp_hi);
+    }
+    // After the probe, infinite lights emit from a disk around the sharp surfaces only (spec 6.2): in a
+    // large scene most of the scene's disk sends photons past every caustic-forming surface. The probe's
+    // own map keeps the scene's disk (camera-side MIS must use the disk its photons came from), so the
+    // new disk takes effect with the next pass.
+    if (pass == 1 && sharp) {
+      const float radius = 0.5f * length(sharp_hi - sharp_lo) * 1.05f + 1e-4f * scene_radius_;
+      if (radius < scene_radius_) next_disk_ = {(sharp_lo + sharp_hi) * 0.5f, radius};
+    }
     map_photons_.clear();
     map_photons_.reserve(total);
     for (PhotonChunk &c : chunks) {
@@ -327,11 +344,14 @@ class CausticsSolver final : public sdk::Integrator {
     nimbus_light_emission_t es;
     lights_->sample_emission(h, light, ue, &es);
     if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0)) return;
-    const Vec3f org = Vec3f::load(es.org), n_e = Vec3f::load(es.n), dir0 = Vec3f::load(es.dir);
     const bool delta_pos = es.flags & NIMBUS_LIGHT_DELTA_POSITION;
     const bool infinite = es.flags & NIMBUS_LIGHT_INFINITE;
+    const Vec3f n_e = Vec3f::load(es.n), dir0 = Vec3f::load(es.dir);
+    // Infinite lights: the solver's own emission disk (emitters.hpp), same numbers as the host's.
+    const Vec3f org = infinite ? emitters_.disk_origin(dir0, ue[0], ue[1]) : Vec3f::load(es.org);
+    const float pdf_pos = infinite ? em.pdf_pos : es.pdf_pos;
     const float cos_e = delta_pos || infinite ? 1.0f : std::abs(dot(n_e, dir0));
-    const float lp = sel * es.pdf_pos * es.pdf_dir;
+    const float lp = sel * pdf_pos * es.pdf_dir;
     Rgb beta = Rgb::load(es.Le) * (cos_e / lp);
     if (is_black(beta) || !is_finite(beta)) return;
     PhotonMis mis_state;
@@ -358,7 +378,11 @@ class CausticsSolver final : public sdk::Integrator {
       const nimbus_lobe_t lobes = bsdf_->lobes(h, &ix);
       const bool rough = !is_sharp(ix, lobes);
       const bool smooth_only = !has(lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
-      if (!rough) out.saw_sharp = true;
+      if (!rough) {
+        out.saw_sharp = true;
+        out.sharp_lo = min(out.sharp_lo, Vec3f::load(ix.p));
+        out.sharp_hi = max(out.sharp_hi, Vec3f::load(ix.p));
+      }
 
       float nee_term = 0;
       if (depth == 1 && !smooth_only) nee_term = first_vertex_nee(ix, light, em, es, wo, lp, c_in);
@@ -408,7 +432,7 @@ class CausticsSolver final : public sdk::Integrator {
     float wo_arr[3];
     wo.store(wo_arr);
     if (em.delta_position()) {
-      const float d2 = length_squared(Vec3f::load(es.org) - Vec3f::load(ix.p));
+      const float d2 = length_squared(Vec3f::load(es.org) - Vec3f::load(ix.p));  // point and spot
       return photon_nee_term(true, pmf, d2, lp, c_in);
     }
     if (em.infinite()) {
@@ -529,7 +553,7 @@ class CausticsSolver final : public sdk::Integrator {
                                       lights_->pdf_incident(h, l, &prev, ray.dir, &ix);
               nee_ratio = mis(light_pdf / prev_pdf);
             }
-            const float lp = emitters_.lp(l, Vec3f::load(ix.ng), wo);
+            const float lp = emitters_.lp(l, Vec3f::load(ix.ng), wo, Vec3f::load(prev.p));
             const float w = hit_weight(nee_ratio, cam.a_r, cam.mis.s_cam(segments), lp);
             rec.add(beta * Le * w, light_group_[l], segments, ids_, lp > 0 && cam.mis.eligible(segments));
           }
@@ -616,7 +640,7 @@ class CausticsSolver final : public sdk::Integrator {
                                   lights_->pdf_incident(host().get(), l, &prev, d, nullptr);
           nee_ratio = mis(light_pdf / prev_pdf);
         }
-        const float lp = emitters_.lp(l, Vec3f(), dir);
+        const float lp = emitters_.lp(l, Vec3f(), -dir, Vec3f::load(prev.p));
         const float w = hit_weight(nee_ratio, cam.a_r, cam.mis.s_cam(segments), lp);
         rec.add(beta * Le * w, light_group_[l], segments, ids_, lp > 0 && cam.mis.eligible(segments));
       }
@@ -661,7 +685,7 @@ class CausticsSolver final : public sdk::Integrator {
       const Emitter &em = emitters_[light];
       const bool infinite = ls.flags & NIMBUS_LIGHT_INFINITE;
       const float hit_ratio = delta ? 0.0f : mis(bsdf_pdf / light_pdf);
-      const float lp = emitters_.lp(light, Vec3f::load(ls.n), -wi);
+      const float lp = emitters_.lp(light, Vec3f::load(ls.n), -wi, Vec3f::load(ix.p));
       const float cos_j = std::abs(dot(Vec3f::load(ix.ng), wi));
       const float d2 = infinite ? 1.0f : ls.dist * ls.dist;
       float nk = pmf;  // delta lights
@@ -731,6 +755,11 @@ class CausticsSolver final : public sdk::Integrator {
   EmitterSet emitters_;
   bool emitter_pdfs_known_ = false;
   float scene_radius_ = 1, theta_pix_ = 0;
+  Vec3f scene_center_;
+  struct Disk {
+    Vec3f center;
+    float radius = 0;
+  } next_disk_;  // emission disk of infinite lights from the next photon pass on
   uint32_t width_ = 0, height_ = 0;
   PhotonSchedule schedule_;
   std::vector<Photon> map_photons_;

@@ -4,7 +4,10 @@
 //   area: uniform by area (P_pos = 1 / area, learnt from one sample_emission call per light) and
 //         cosine-weighted directions (halved for two-sided emitters);
 //   point: uniform sphere; spot: uniform cone of half angle acos(cos_theta_e) around the axis;
-//   sun: the scene's emission disk (P_pos = 1 / (pi R^2)) and a uniform cone (or a delta direction).
+//   sun: an emission disk (P_pos = 1 / (pi R_e^2)) and a uniform cone (or a delta direction). The disk
+//   starts as the host's (the scene's bounding sphere) and shrinks to the bounding sphere of the sharp
+//   surfaces photons met in the probe pass (spec 6.2): the solver then places sun photons on its own disk,
+//   and a receiver whose line towards the sun misses that disk has no merge technique (P_pos = 0).
 // Environment lights do not emit photons (v1: uniform and dim skies are PT's job, spec 6.2; map pruning
 // comes with light-selection adaptation), so their P_sel is 0 and no merge technique exists for them.
 #pragma once
@@ -28,7 +31,7 @@ struct Emitter {
   float power = 0;
   Vec3f axis;              // spot: the cone axis; sun: the direction photons travel
   float cos_theta_e = -1;  // spot / sun cone
-  float pdf_pos = 0;       // area: 1 / area (filled by the first photon pass); sun: 1 / (pi R^2)
+  float pdf_pos = 0;       // area: 1 / area (filled by the first photon pass); sun: 1 / (pi R_e^2)
   bool delta_position() const { return flags & NIMBUS_LIGHT_DELTA_POSITION; }
   bool delta_direction() const { return flags & NIMBUS_LIGHT_DELTA_DIRECTION; }
   bool infinite() const { return flags & NIMBUS_LIGHT_INFINITE; }
@@ -57,15 +60,37 @@ inline Emitter make_emitter(const nimbus_light_info_t &info) {
 // product lp of mis.hpp for a given emitter point and direction.
 class EmitterSet {
  public:
-  void build(std::vector<Emitter> emitters, float scene_radius) {
+  void build(std::vector<Emitter> emitters, const Vec3f &scene_center, float scene_radius) {
     emitters_ = std::move(emitters);
+    scene_center_ = scene_center, scene_radius_ = scene_radius;
+    set_disk(scene_center, scene_radius);
     std::vector<double> w(emitters_.size(), 0.0);
-    for (size_t i = 0; i < emitters_.size(); ++i) {
-      Emitter &e = emitters_[i];
-      if (e.infinite()) e.pdf_pos = 1 / (kPi * sqr(scene_radius));
-      w[i] = e.kind == EmitterKind::Environment ? 0.0 : double(e.power);
-    }
+    for (size_t i = 0; i < emitters_.size(); ++i)
+      w[i] = emitters_[i].kind == EmitterKind::Environment ? 0.0 : double(emitters_[i].power);
     table_ = AliasTable(w);
+  }
+
+  // The emission disk of infinite lights: perpendicular to the light's direction, centred on the
+  // projection of `center`, radius `radius`.
+  void set_disk(const Vec3f &center, float radius) {
+    disk_center_ = center, disk_radius_ = radius;
+    for (Emitter &e : emitters_)
+      if (e.infinite()) e.pdf_pos = 1 / (kPi * sqr(radius));
+  }
+  const Vec3f &disk_center() const { return disk_center_; }
+  float disk_radius() const { return disk_radius_; }
+  // A photon origin on the disk for an infinite light sending light along `w`, from the same two
+  // numbers as the host's disk (concentric map), outside the scene's bounding sphere.
+  Vec3f disk_origin(const Vec3f &w, float u0, float u1) const {
+    const Frame f = Frame::from_normal(-w);
+    const Vec2f d = sample_uniform_disk_concentric(u0, u1);
+    const float back = scene_radius_ + length(disk_center_ - scene_center_) + disk_radius_;
+    return disk_center_ - w * back + (f.s * d.x + f.t * d.y) * disk_radius_;
+  }
+  // Whether the line through p along w meets the disk.
+  bool on_disk(const Vec3f &p, const Vec3f &w) const {
+    const Vec3f d = p - disk_center_;
+    return length_squared(d - w * dot(d, w)) <= sqr(disk_radius_);
   }
   bool emits_photons() const { return !table_.empty(); }
   size_t size() const { return emitters_.size(); }
@@ -75,8 +100,8 @@ class EmitterSet {
   int64_t pick(float u, float *pmf) const { return table_.sample(u, pmf); }
 
   // lp for light `l` emitting from `z`'s surface with normal `n` (area lights) along the unit direction
-  // `w` (from the light towards the receiver). 0 when the light cannot emit that photon.
-  float lp(uint32_t l, const Vec3f &n, const Vec3f &w) const {
+  // `w` (from the light towards the receiver `p`). 0 when the light cannot emit that photon.
+  float lp(uint32_t l, const Vec3f &n, const Vec3f &w, const Vec3f &p) const {
     const float sel = table_.pmf(l);
     if (!(sel > 0)) return 0;
     const Emitter &e = emitters_[l];
@@ -90,6 +115,7 @@ class EmitterSet {
       case EmitterKind::Point: return sel * kUniformSpherePdf;
       case EmitterKind::Spot: return dot(w, e.axis) >= e.cos_theta_e ? sel * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
       case EmitterKind::Sun:
+        if (!on_disk(p, w)) return 0;
         if (e.delta_direction()) return sel * e.pdf_pos;
         return dot(w, e.axis) >= e.cos_theta_e ? sel * e.pdf_pos * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
       case EmitterKind::Environment: return 0;
@@ -100,6 +126,8 @@ class EmitterSet {
  private:
   std::vector<Emitter> emitters_;
   AliasTable table_;
+  Vec3f scene_center_, disk_center_;
+  float scene_radius_ = 1, disk_radius_ = 1;
 };
 
 }  // namespace nimbus::caustics

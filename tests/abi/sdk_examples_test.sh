@@ -1,5 +1,5 @@
 #!/bin/bash
-# sdk_examples_test.sh BUILD_DIR SOURCE_DIR CMAKE GENERATOR MAKE_PROGRAM CC CXX SANITIZE
+# sdk_examples_test.sh BUILD_DIR SOURCE_DIR CMAKE GENERATOR MAKE_PROGRAM CC CXX SANITIZE [NM]
 #
 # What a third party does with Nimbus, end to end: install the SDK into a fresh prefix, build the two
 # out-of-tree examples (plugins/examples/) against it with find_package(Nimbus), install them, check
@@ -7,7 +7,7 @@
 # failing fails the test; exit 77 means "cannot run in this configuration" (ctest: skipped).
 set -euo pipefail
 
-build=$1 src=$2 cmake=$3 generator=$4 make_program=$5 cc=$6 cxx=$7 sanitize=${8:-OFF}
+build=$1 src=$2 cmake=$3 generator=$4 make_program=$5 cc=$6 cxx=$7 sanitize=${8:-OFF} nm=${9:-nm}
 nimbus=$build/bin/nimbus
 examples=(c-minimal:org.example.normals:example_normals cpp-minimal:org.example.eyelight:example_eyelight)
 
@@ -59,7 +59,7 @@ for ex in "${examples[@]}"; do
   "$cmake" --install "$work/build-$dir" --prefix "$plugins" >/dev/null || fail "install $dir"
   lib=$plugins/lib/nimbus/plugins/lib$target.so
   [[ -f $lib ]] || fail "nimbus_add_plugin() did not install $lib"
-  "$cmake" -DNM=nm "-DLIBS=$lib" -P "$src/tests/plugins/check_exports.cmake" || fail "$lib exports more than the entry"
+  "$cmake" "-DNM=$nm" "-DLIBS=$lib" -P "$src/tests/plugins/check_exports.cmake" || fail "$lib exports more than the entry"
 done
 
 step "nimbus plugins"

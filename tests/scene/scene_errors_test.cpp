@@ -19,8 +19,9 @@ TEST(SceneErrors, UnclosedFlowSequence) {
 }
 
 TEST(SceneErrors, UnknownTopLevelKey) {
-  EXPECT_TRUE(fails_at("render:\n  seed: 1\nenvironment: { color: [1, 1, 1] }\n", 3, 1, "environment",
-                       "unknown key 'environment'; allowed: render, camera, materials, objects, lights"));
+  EXPECT_TRUE(fails_at("render:\n  seed: 1\ntextures: { wood: wood.png }\n", 3, 1, "textures",
+                       "unknown key 'textures'; allowed: render, camera, materials, meshes, objects, lights, "
+                       "environment, include"));
 }
 
 TEST(SceneErrors, StrayFlowIndicator) {
@@ -39,8 +40,8 @@ TEST(SceneErrors, SecondYamlDocument) {
 }
 
 TEST(SceneErrors, UnknownRenderKey) {
-  EXPECT_TRUE(fails_at("render:\n  resolution: [64, 64]\n  target_error: 0.01\n", 3, 3, "render.target_error",
-                       "unknown key 'target_error'; allowed: resolution, iterations, time, seed"));
+  EXPECT_TRUE(fails_at("render:\n  resolution: [64, 64]\n  threads: 4\n", 3, 3, "render.threads",
+                       "unknown key 'threads'; allowed: resolution, iterations, time, target_error, seed"));
 }
 
 TEST(SceneErrors, LongUserTextIsAbbreviated) {
@@ -70,8 +71,8 @@ TEST(SceneErrors, UnknownObjectKeyForItsShape) {
 }
 
 TEST(SceneErrors, UnknownLightKey) {
-  EXPECT_TRUE(fails_at("lights:\n  - { type: point, position: [0, 0, 1], power: 100 }\n", 2, 41,
-                       "lights[0].power", "unknown key 'power' for a point light"));
+  EXPECT_TRUE(fails_at("lights:\n  - { type: point, position: [0, 0, 1], cone: 30 }\n", 2, 41,
+                       "lights[0].cone", "unknown key 'cone' for a point light"));
 }
 
 TEST(SceneErrors, NumberExpectedGotString) {
@@ -169,9 +170,9 @@ TEST(SceneErrors, UnknownMaterialReference) {
 }
 
 TEST(SceneErrors, UnknownShape) {
-  EXPECT_TRUE(fails_at(kWhite + "objects:\n  - shape: cylinder\n    material: white\n", 4, 12,
-                       "objects[0].shape",
-                       "unknown shape 'cylinder'; known: sphere, rectangle, box, disk, mesh"));
+  EXPECT_TRUE(
+      fails_at(kWhite + "objects:\n  - shape: cylinder\n    material: white\n", 4, 12, "objects[0].shape",
+               "unknown shape 'cylinder'; known: sphere, rectangle, box, disk, mesh, instance, subdivision"));
 }
 
 TEST(SceneErrors, UnknownMaterialType) {
@@ -286,8 +287,8 @@ TEST(SceneErrors, MeshWithoutGeometry) {
 }
 
 TEST(SceneErrors, UnknownLightType) {
-  EXPECT_TRUE(fails_at("lights:\n  - type: spot\n    position: [0, 0, 1]\n", 2, 11, "lights[0].type",
-                       "unknown light type 'spot'; known: point"));
+  EXPECT_TRUE(fails_at("lights:\n  - type: area\n    position: [0, 0, 1]\n", 2, 11, "lights[0].type",
+                       "unknown light type 'area'; known: point, spot, sun"));
 }
 
 TEST(SceneErrors, LightWithoutPosition) {

@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "scene/scene_parser.hpp"
@@ -42,5 +47,36 @@ inline ::testing::AssertionResult fails_at(const std::string &yaml, int line, in
                                            const std::string &what, const std::string &contains = "") {
   return error_is(parse_scene_string(yaml, "test.yaml"), "test.yaml", line, column, what, contains);
 }
+
+// A fresh directory for files a test writes (included scenes, glTF files, environment maps), removed with
+// everything in it when the test ends. Unique per process and instance, so parallel ctest runs are apart.
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    path_ = std::filesystem::temp_directory_path() /
+            ("nimbus-scene-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir &) = delete;
+  TempDir &operator=(const TempDir &) = delete;
+
+  const std::filesystem::path &path() const { return path_; }
+  // Writes `text` to `relative` (creating directories) and returns the full path as a string.
+  std::string write(const std::string &relative, const std::string &text) const {
+    const std::filesystem::path p = path_ / relative;
+    std::filesystem::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << text;
+    return p.string();
+  }
+
+ private:
+  std::filesystem::path path_;
+};
 
 }  // namespace nimbus::test

@@ -1,0 +1,234 @@
+#include "materials/texture_set.hpp"
+
+#include <OpenImageIO/texture.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace nimbus {
+
+namespace {
+
+// How stored values become linear ones.
+enum class Decode { None, Srgb, Gamma };
+
+struct Texture {
+  OIIO::TextureSystem::TextureHandle *handle = nullptr;
+  int width = 0, height = 0;
+  int channels = 1;  // looked up: 1 (grey or data) or 3 (RGB)
+  Decode decode = Decode::None;
+  float gamma = 1;
+};
+
+Decode decode_of(const OIIO::ImageSpec &spec, TextureSet::Kind kind, float &gamma) {
+  if (kind == TextureSet::Kind::Data || spec.format.is_floating_point()) return Decode::None;
+  const std::string space = spec.get_string_attribute("oiio:ColorSpace");
+  if (OIIO::Strutil::iequals(space, "linear") || OIIO::Strutil::iequals(space, "scene_linear"))
+    return Decode::None;
+  // PNG with a gAMA chunk other than sRGB's: a pure power law.
+  gamma = spec.get_float_attribute("oiio:Gamma", 0);
+  if (OIIO::Strutil::istarts_with(space, "gamma") && gamma > 0) return Decode::Gamma;
+  return Decode::Srgb;  // PNG and JPEG say sRGB; integer files that say nothing are display images too
+}
+
+float decode_value(const Texture &tex, float v) {
+  switch (tex.decode) {
+    case Decode::Srgb:
+      return srgb_to_linear(v);
+    case Decode::Gamma:
+      return std::pow(std::max(v, 0.0f), tex.gamma);
+    case Decode::None:
+      break;
+  }
+  return v;
+}
+
+// OIIO reports a failure as several lines, the first the cause and the rest how it surfaced (repeating the
+// path and the cause); errors here are one line.
+std::string first_line(const std::string &text) {
+  std::string line = text.substr(0, text.find('\n'));
+  while (!line.empty() && line.back() == ' ') line.pop_back();
+  return line.empty() ? "unknown error" : line;
+}
+
+Error texture_error(const TextureDesc &t, const std::string &reason) {
+  std::string message = t.path + ": cannot read texture: " + reason;
+  if (t.where.line > 0)
+    message = t.where.file + ":" + std::to_string(t.where.line) + ":" + std::to_string(t.where.column) +
+              ": error: " + (t.key.empty() ? "" : t.key + ": ") + message;
+  return Error{std::move(message)};
+}
+
+// The operating system's reason a file cannot be read, which is clearer than the image library's ("could
+// not open file"); empty when it can be opened.
+std::string unreadable_reason(const std::string &path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) return "is a directory";
+  std::FILE *f = std::fopen(path.c_str(), "rb");
+  if (!f) return std::strerror(errno);
+  std::fclose(f);
+  return {};
+}
+
+}  // namespace
+
+float srgb_to_linear(float encoded) {
+  if (encoded <= 0.04045f) return encoded / 12.92f;
+  return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+// Never reused, unlike addresses: tells a thread's cached Perthread of a destroyed set from a live one's.
+std::atomic<uint64_t> next_set_id{1};
+
+struct TextureSet::Impl {
+  using Perthread = OIIO::TextureSystem::Perthread;
+
+  const uint64_t id = next_set_id.fetch_add(1);
+  OIIO::TextureSystem *ts = nullptr;
+  std::vector<Texture> textures;
+  std::map<std::tuple<std::string, Kind, int>, Id> ids;  // (path, kind, min_channels)
+
+  Impl() {
+    // A private system and cache rather than the process-wide shared one: its lifetime is this scene's,
+    // and a file rewritten between two renders in one process is read again.
+    ts = OIIO::TextureSystem::create(false);
+    ts->attribute("max_memory_MB", 512.0f);
+    ts->attribute("autotile", 64);
+    ts->attribute("automip", 1);
+    // Colour as stored, not multiplied by alpha: albedo ignores alpha.
+    ts->attribute("unassociatedalpha", 1);
+  }
+  ~Impl() {
+    for (Perthread *p : perthread) ts->destroy_thread_info(p);
+    OIIO::TextureSystem::destroy(ts);
+  }
+
+  // The calling thread's Perthread for this set. With nullptr OIIO keeps its own records in thread-specific
+  // storage tied to the cache, and TBB's worker threads outlive this private cache: their lifetime would
+  // not be ours. These are created here and destroyed with the set; a thread's slot remembers which set
+  // its record belongs to, so a thread that meets a new set simply gets a new record.
+  Perthread *thread_info() const {
+    struct Slot {
+      uint64_t owner = 0;
+      Perthread *info = nullptr;
+    };
+    thread_local Slot slot;
+    if (slot.owner != id) {
+      const std::lock_guard lock(perthread_mutex);
+      slot = {id, ts->create_thread_info()};
+      perthread.push_back(slot.info);
+    }
+    return slot.info;
+  }
+  mutable std::mutex perthread_mutex;
+  mutable std::vector<Perthread *> perthread;  // every record handed out, for the destructor
+
+  // One lookup with zero derivatives: magnification filtering on the finest level. A progressive renderer
+  // integrates the pixel footprint through pixel jitter, so no MIP filter width is needed.
+  void fetch(const Texture &tex, OIIO::TextureOpt::InterpMode interp, float s, float t, float *out) const {
+    OIIO::TextureOpt opt;
+    opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;
+    opt.interpmode = interp;
+    if (!ts->texture(tex.handle, thread_info(), opt, s, t, 0, 0, 0, 0, tex.channels, out)) {
+      // Only an I/O failure after validation gets here (the file changed under us); drop the message so
+      // that the per-thread error strings cannot grow without bound.
+      (void)ts->geterror();
+      for (int c = 0; c < tex.channels; ++c) out[c] = 0;
+    }
+  }
+
+  // Filtered, linear texel values (tex.channels of them).
+  void lookup(const Texture &tex, Vec2f st, float *out) const {
+    if (tex.decode == Decode::None) return fetch(tex, OIIO::TextureOpt::InterpBilinear, st.x, st.y, out);
+    // Decode before filtering (as GPUs do with sRGB formats): blending encoded values and decoding the
+    // blend would darken every edge between texels. So the four texels are fetched one by one.
+    const float x = st.x * float(tex.width) - 0.5f, y = st.y * float(tex.height) - 0.5f;
+    const float x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
+    for (int c = 0; c < tex.channels; ++c) out[c] = 0;
+    for (int j = 0; j < 2; ++j) {
+      for (int i = 0; i < 2; ++i) {
+        const float w = (i ? fx : 1 - fx) * (j ? fy : 1 - fy);
+        if (w == 0) continue;
+        float texel[3];
+        fetch(tex, OIIO::TextureOpt::InterpClosest, (x0 + float(i) + 0.5f) / float(tex.width),
+              (y0 + float(j) + 0.5f) / float(tex.height), texel);
+        for (int c = 0; c < tex.channels; ++c) out[c] += w * decode_value(tex, texel[c]);
+      }
+    }
+  }
+
+  // Reads every texel of the top level once, a band of rows at a time: truncated or corrupt pixel data is
+  // found now, and the tiles read stay in the cache for the render.
+  std::string read_all(const Texture &tex, const OIIO::ImageSpec &spec) const {
+    OIIO::TextureOpt opt;
+    constexpr int kRows = 64;
+    std::vector<float> band(size_t(spec.width) * kRows * size_t(spec.nchannels));
+    for (int y = spec.y; y < spec.y + spec.height; y += kRows) {
+      const int y_end = std::min(y + kRows, spec.y + spec.height);
+      if (!ts->get_texels(tex.handle, thread_info(), opt, 0, spec.x, spec.x + spec.width, y, y_end, spec.z,
+                          spec.z + std::max(spec.depth, 1), 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
+                          band.data()))
+        return first_line(ts->geterror());
+      for (float v : band)
+        if (!std::isfinite(v)) return "contains NaN or infinite values";
+    }
+    return {};
+  }
+};
+
+TextureSet::TextureSet() : impl_(std::make_unique<Impl>()) {}
+TextureSet::~TextureSet() = default;
+
+Expected<TextureSet::Id> TextureSet::add(const TextureDesc &desc, Kind kind, int min_channels) {
+  if (auto found = impl_->ids.find({desc.path, kind, min_channels}); found != impl_->ids.end())
+    return found->second;
+  if (std::string reason = unreadable_reason(desc.path); !reason.empty()) return texture_error(desc, reason);
+  OIIO::TextureSystem &ts = *impl_->ts;
+  Texture tex;
+  tex.handle = ts.get_texture_handle(OIIO::ustring(desc.path), impl_->thread_info());
+  OIIO::ImageSpec spec;
+  if (!tex.handle || !ts.get_imagespec(tex.handle, impl_->thread_info(), 0, spec))
+    return texture_error(desc, first_line(ts.geterror()));
+  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
+    return texture_error(desc, "the image has no pixels");
+  if (spec.depth > 1) return texture_error(desc, "volume images are not 2-D textures");
+  if (spec.nchannels < min_channels)
+    return texture_error(desc, "needs " + std::to_string(min_channels) + " channels, the image has " +
+                                   std::to_string(spec.nchannels));
+  // Lookups use the display window (full_*), which is what the texture coordinates span.
+  tex.width = spec.full_width > 0 ? spec.full_width : spec.width;
+  tex.height = spec.full_height > 0 ? spec.full_height : spec.height;
+  tex.channels = kind == Kind::Color && spec.nchannels >= 3 ? 3 : (min_channels >= 3 ? 3 : 1);
+  tex.decode = decode_of(spec, kind, tex.gamma);
+  if (std::string reason = impl_->read_all(tex, spec); !reason.empty()) return texture_error(desc, reason);
+  const auto id = Id(impl_->textures.size());
+  impl_->textures.push_back(tex);
+  impl_->ids.emplace(std::make_tuple(desc.path, kind, min_channels), id);
+  return id;
+}
+
+Rgb TextureSet::rgb(Id id, Vec2f st) const {
+  const Texture &tex = impl_->textures[id];
+  float v[3];
+  impl_->lookup(tex, st, v);
+  return tex.channels >= 3 ? Rgb{v[0], v[1], v[2]} : Rgb(v[0]);
+}
+
+float TextureSet::scalar(Id id, Vec2f st) const {
+  const Texture &tex = impl_->textures[id];
+  float v[3];
+  impl_->lookup(tex, st, v);
+  return v[0];
+}
+
+}  // namespace nimbus

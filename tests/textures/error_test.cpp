@@ -1,0 +1,191 @@
+// Bad textures and bad texture syntax: every error names the file, the reason and the place in the scene,
+// in-process and through the CLI (which then exits non-zero and writes nothing).
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "e2e/subprocess.hpp"
+#include "materials/textured_materials.hpp"
+#include "render/render_context.hpp"
+#include "scene/scene_parser.hpp"
+#include "texture_fixtures.hpp"
+
+namespace nimbus {
+namespace {
+
+using texture_test::has_substr;
+using texture_test::ScratchDir;
+using texture_test::texture_at;
+
+std::string add_error(const std::string &path, TextureSet::Kind kind = TextureSet::Kind::Color,
+                      int channels = 1) {
+  TextureSet set;
+  auto id = set.add(texture_at(path), kind, channels);
+  EXPECT_FALSE(id.ok()) << path << " was accepted";
+  return id.ok() ? std::string() : id.error().message;
+}
+
+std::vector<uint8_t> noise(size_t n) {
+  std::mt19937 rng(3);
+  std::vector<uint8_t> out(n);
+  for (uint8_t &b : out) b = uint8_t(rng());
+  return out;
+}
+
+TEST(TextureErrors, MissingFileNamesPathReasonAndSceneLocation) {
+  ScratchDir dir;
+  const std::string path = dir.file("nowhere.png");
+  EXPECT_EQ(add_error(path), "scene.yaml:7:22: error: materials.m.albedo.texture: " + path +
+                                 ": cannot read texture: No such file or directory");
+}
+
+TEST(TextureErrors, DirectoryIsNotATexture) {
+  ScratchDir dir;
+  EXPECT_TRUE(has_substr(add_error(dir.path().string()),
+                         dir.path().string() + ": cannot read texture: is a directory"));
+}
+
+TEST(TextureErrors, UnreadableFile) {
+  if (::geteuid() == 0) GTEST_SKIP() << "root reads any file";
+  ScratchDir dir;
+  texture_test::write_png8(dir.file("locked.png"), 1, 1, 1, {7});
+  ::chmod(dir.file("locked.png").c_str(), 0);
+  EXPECT_TRUE(
+      has_substr(add_error(dir.file("locked.png")), "locked.png: cannot read texture: Permission denied"));
+}
+
+TEST(TextureErrors, CorruptFileNamesTheReason) {
+  ScratchDir dir;
+  texture_test::write_text(dir.file("garbage.png"), "this is not a PNG file at all\n");
+  const std::string message = add_error(dir.file("garbage.png"));
+  EXPECT_TRUE(has_substr(message, dir.file("garbage.png") + ": cannot read texture: "));
+  const std::string reason = message.substr(message.find("cannot read texture: ") + 21);
+  EXPECT_GT(reason.size(), 5u) << message;
+  EXPECT_EQ(reason.find('\n'), std::string::npos) << "one line: " << message;
+  std::printf("corrupt file: %s\n", message.c_str());
+}
+
+TEST(TextureErrors, TruncatedPixelDataIsFoundAtBuild) {
+  // A valid header with half its pixel data: only reading the pixels finds the damage.
+  ScratchDir dir;
+  const std::string path = dir.file("truncated.png");
+  texture_test::write_png8(path, 256, 256, 3, noise(256 * 256 * 3));
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) / 2);
+  const std::string message = add_error(path);
+  EXPECT_TRUE(has_substr(message, path + ": cannot read texture: "));
+  std::printf("truncated file: %s\n", message.c_str());
+}
+
+TEST(TextureErrors, NormalMapNeedsThreeChannels) {
+  ScratchDir dir;
+  texture_test::write_png8(dir.file("grey.png"), 1, 1, 1, {128});
+  EXPECT_TRUE(has_substr(add_error(dir.file("grey.png"), TextureSet::Kind::Data, 3),
+                         "grey.png: cannot read texture: needs 3 channels, the image has 1"));
+}
+
+// A scene file in a scratch directory whose material names `texture_yaml`.
+std::string write_scene(const ScratchDir &dir, const std::string &material_yaml) {
+  const std::string path = dir.file("scene.yaml");
+  texture_test::write_text(path,
+                           "render: { resolution: [8, 8], iterations: 1 }\n"
+                           "materials:\n"
+                           "  m: " +
+                               material_yaml +
+                               "\n"
+                               "objects:\n"
+                               "  - { shape: rectangle, size: [1, 1], material: m }\n"
+                               "lights:\n"
+                               "  - { type: point, position: [0, 0, 2], intensity: 1 }\n");
+  return path;
+}
+
+TEST(TextureErrors, SceneBuildNamesTheResolvedPathAndTheSceneLocation) {
+  ScratchDir dir;
+  const std::string scene = write_scene(dir, "{ type: diffuse, albedo: { texture: maps/missing.png } }");
+  auto desc = parse_scene_file(scene);
+  ASSERT_TRUE(desc.ok()) << desc.error().message;
+  EXPECT_EQ(desc.value().materials[0].albedo_texture.path, dir.file("maps/missing.png"));
+  auto ctx = RenderContext::build(desc.value(), 1);
+  ASSERT_FALSE(ctx.ok());
+  EXPECT_EQ(ctx.error().message,
+            scene + ":3:42: error: materials.m.albedo.texture: " + dir.file("maps/missing.png") +
+                ": cannot read texture: No such file or directory");
+}
+
+TEST(TextureErrors, CliExitsNonZeroNamingPathAndReason) {
+  ScratchDir dir;
+  texture_test::write_text(dir.file("bad.jpg"), "JFIF? no.");
+  for (const auto &[material, file, reason] :
+       {std::tuple<std::string, std::string, std::string>{
+            "{ type: diffuse, albedo: { texture: missing.png } }", "missing.png",
+            "No such file or directory"},
+        {"{ type: conductor, metal: gold, roughness: { texture: bad.jpg } }", "bad.jpg", ""},
+        {"{ type: dielectric, normal_map: missing_n.png }", "missing_n.png", "No such file or directory"}}) {
+    write_scene(dir, material);
+    const e2e::ProcessResult r = e2e::run_process(
+        {NIMBUS_CLI, "render", "scene.yaml", "-o", "out.exr", "--iterations", "1"}, dir.path());
+    EXPECT_TRUE(r.exited && r.exit_code != 0) << r.describe();
+    EXPECT_TRUE(has_substr(r.err, dir.file(file) + ": cannot read texture: " + reason)) << r.err;
+    EXPECT_TRUE(has_substr(r.err, "scene.yaml:3:")) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out.exr")));
+  }
+}
+
+// Syntax: errors at file:line:column, as for every other key.
+std::string parse_error(const std::string &material_yaml) {
+  auto desc = parse_scene_string("materials:\n  m: " + material_yaml + "\n", "s.yaml");
+  EXPECT_FALSE(desc.ok()) << material_yaml;
+  return desc.ok() ? std::string() : desc.error().message;
+}
+
+TEST(TextureSyntax, Errors) {
+  EXPECT_TRUE(has_substr(parse_error("{ type: diffuse, albedo: [0.5, 0.5, 0.5], uv_scale: 2 }"),
+                         "s.yaml:2:48: error: materials.m.uv_scale: needs a texture"));
+  EXPECT_TRUE(has_substr(parse_error("{ type: diffuse, albedo: { file: a.png } }"),
+                         "s.yaml:2:33: error: materials.m.albedo.file: unknown key 'file'"));
+  EXPECT_TRUE(has_substr(parse_error("{ type: diffuse, albedo: { texture: '' } }"),
+                         "s.yaml:2:42: error: materials.m.albedo.texture: must not be empty"));
+  EXPECT_TRUE(has_substr(parse_error("{ type: conductor, metal: gold, albedo: { texture: a.png } }"),
+                         "unknown key 'albedo' for a conductor"));
+  EXPECT_TRUE(has_substr(parse_error("{ type: diffuse, roughness: { texture: a.png } }"),
+                         "unknown key 'roughness' for a diffuse material"));
+  EXPECT_TRUE(has_substr(parse_error("{ type: diffuse, albedo: { texture: a.png }, uv_scale: [1, 0] }"),
+                         "materials.m.uv_scale[1]: must be > 0"));
+  EXPECT_TRUE(has_substr(parse_error("{ type: diffuse, normal_map: [1, 2] }"), "materials.m.normal_map"));
+}
+
+TEST(TextureSyntax, FormsAndRelativePaths) {
+  ScratchDir dir;
+  std::filesystem::create_directories(dir.path() / "sub");
+  const std::string scene = dir.file("sub/scene.yaml");
+  texture_test::write_text(scene,
+                           "materials:\n"
+                           "  a: { type: diffuse, albedo: { texture: ../wood.png }, normal_map: maps/n.png,"
+                           " uv_scale: [2, 3] }\n"
+                           "  b: { type: conductor, metal: gold, roughness: { texture: /abs/r.exr },"
+                           " normal_map: { texture: n.exr }, uv_scale: 4 }\n"
+                           "  c: { type: dielectric, roughness: 0.2 }\n");
+  auto desc = parse_scene_file(scene);
+  ASSERT_TRUE(desc.ok()) << desc.error().message;
+  const MaterialDesc &a = desc.value().materials[0], &b = desc.value().materials[1],
+                     &c = desc.value().materials[2];
+  EXPECT_EQ(a.albedo_texture.path, dir.file("wood.png"));
+  EXPECT_EQ(a.normal_map.path, dir.file("sub/maps/n.png"));
+  EXPECT_EQ(a.normal_map.key, "materials.a.normal_map");
+  EXPECT_EQ(a.normal_map.where.line, 2);
+  EXPECT_EQ(a.uv_scale.x, 2);
+  EXPECT_EQ(a.uv_scale.y, 3);
+  EXPECT_TRUE(a.roughness_texture.empty());
+  EXPECT_EQ(b.roughness_texture.path, "/abs/r.exr");
+  EXPECT_EQ(b.normal_map.path, dir.file("sub/n.exr"));
+  EXPECT_EQ(b.uv_scale.y, 4);
+  EXPECT_FALSE(c.textured());
+  EXPECT_EQ(c.roughness, 0.2f);
+}
+
+}  // namespace
+}  // namespace nimbus
