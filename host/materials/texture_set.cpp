@@ -1,15 +1,15 @@
 #include "materials/texture_set.hpp"
 
+#include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/texture.h>
 
-#include <atomic>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
-#include <mutex>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -80,6 +80,24 @@ std::string unreadable_reason(const std::string &path) {
   return {};
 }
 
+// One texture system for the process, created on first use and never destroyed. Private (with its own
+// cache) so that these attributes stay away from the process-wide cache the rest of OpenImageIO uses
+// (ImageBuf); never destroyed because OIIO 2.4's TextureSystem::destroy frees with a mismatched size
+// (AddressSanitizer: new-delete-type-mismatch). Each TextureSet invalidates its files when done, which
+// closes them and frees their tiles.
+OIIO::TextureSystem &texture_system() {
+  static OIIO::TextureSystem *const ts = [] {
+    OIIO::TextureSystem *t = OIIO::TextureSystem::create(false, OIIO::ImageCache::create(false));
+    t->attribute("max_memory_MB", 512.0f);
+    t->attribute("autotile", 64);
+    t->attribute("automip", 1);
+    // Colour as stored, not multiplied by alpha: albedo ignores alpha.
+    t->attribute("unassociatedalpha", 1);
+    return t;
+  }();
+  return *ts;
+}
+
 }  // namespace
 
 float srgb_to_linear(float encoded) {
@@ -87,51 +105,15 @@ float srgb_to_linear(float encoded) {
   return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
-// Never reused, unlike addresses: tells a thread's cached Perthread of a destroyed set from a live one's.
-std::atomic<uint64_t> next_set_id{1};
-
 struct TextureSet::Impl {
-  using Perthread = OIIO::TextureSystem::Perthread;
-
-  const uint64_t id = next_set_id.fetch_add(1);
-  OIIO::TextureSystem *ts = nullptr;
+  OIIO::TextureSystem *ts = &texture_system();
   std::vector<Texture> textures;
+  std::vector<OIIO::ustring> files;                      // each once, to invalidate
   std::map<std::tuple<std::string, Kind, int>, Id> ids;  // (path, kind, min_channels)
 
-  Impl() {
-    // A private system and cache rather than the process-wide shared one: its lifetime is this scene's,
-    // and a file rewritten between two renders in one process is read again.
-    ts = OIIO::TextureSystem::create(false);
-    ts->attribute("max_memory_MB", 512.0f);
-    ts->attribute("autotile", 64);
-    ts->attribute("automip", 1);
-    // Colour as stored, not multiplied by alpha: albedo ignores alpha.
-    ts->attribute("unassociatedalpha", 1);
-  }
   ~Impl() {
-    for (Perthread *p : perthread) ts->destroy_thread_info(p);
-    OIIO::TextureSystem::destroy(ts);
+    for (const OIIO::ustring &file : files) ts->invalidate(file);
   }
-
-  // The calling thread's Perthread for this set. With nullptr OIIO keeps its own records in thread-specific
-  // storage tied to the cache, and TBB's worker threads outlive this private cache: their lifetime would
-  // not be ours. These are created here and destroyed with the set; a thread's slot remembers which set
-  // its record belongs to, so a thread that meets a new set simply gets a new record.
-  Perthread *thread_info() const {
-    struct Slot {
-      uint64_t owner = 0;
-      Perthread *info = nullptr;
-    };
-    thread_local Slot slot;
-    if (slot.owner != id) {
-      const std::lock_guard lock(perthread_mutex);
-      slot = {id, ts->create_thread_info()};
-      perthread.push_back(slot.info);
-    }
-    return slot.info;
-  }
-  mutable std::mutex perthread_mutex;
-  mutable std::vector<Perthread *> perthread;  // every record handed out, for the destructor
 
   // One lookup with zero derivatives: magnification filtering on the finest level. A progressive renderer
   // integrates the pixel footprint through pixel jitter, so no MIP filter width is needed.
@@ -139,7 +121,7 @@ struct TextureSet::Impl {
     OIIO::TextureOpt opt;
     opt.swrap = opt.twrap = OIIO::TextureOpt::WrapPeriodic;
     opt.interpmode = interp;
-    if (!ts->texture(tex.handle, thread_info(), opt, s, t, 0, 0, 0, 0, tex.channels, out)) {
+    if (!ts->texture(tex.handle, nullptr, opt, s, t, 0, 0, 0, 0, tex.channels, out)) {
       // Only an I/O failure after validation gets here (the file changed under us); drop the message so
       // that the per-thread error strings cannot grow without bound.
       (void)ts->geterror();
@@ -175,7 +157,7 @@ struct TextureSet::Impl {
     std::vector<float> band(size_t(spec.width) * kRows * size_t(spec.nchannels));
     for (int y = spec.y; y < spec.y + spec.height; y += kRows) {
       const int y_end = std::min(y + kRows, spec.y + spec.height);
-      if (!ts->get_texels(tex.handle, thread_info(), opt, 0, spec.x, spec.x + spec.width, y, y_end, spec.z,
+      if (!ts->get_texels(tex.handle, nullptr, opt, 0, spec.x, spec.x + spec.width, y, y_end, spec.z,
                           spec.z + std::max(spec.depth, 1), 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
                           band.data()))
         return first_line(ts->geterror());
@@ -194,10 +176,16 @@ Expected<TextureSet::Id> TextureSet::add(const TextureDesc &desc, Kind kind, int
     return found->second;
   if (std::string reason = unreadable_reason(desc.path); !reason.empty()) return texture_error(desc, reason);
   OIIO::TextureSystem &ts = *impl_->ts;
+  const OIIO::ustring file(desc.path);
+  if (std::find(impl_->files.begin(), impl_->files.end(), file) == impl_->files.end()) {
+    // Read afresh: the cache outlives scenes, and the file may have changed since another scene read it.
+    ts.invalidate(file);
+    impl_->files.push_back(file);
+  }
   Texture tex;
-  tex.handle = ts.get_texture_handle(OIIO::ustring(desc.path), impl_->thread_info());
+  tex.handle = ts.get_texture_handle(file, nullptr);
   OIIO::ImageSpec spec;
-  if (!tex.handle || !ts.get_imagespec(tex.handle, impl_->thread_info(), 0, spec))
+  if (!tex.handle || !ts.get_imagespec(tex.handle, nullptr, 0, spec))
     return texture_error(desc, first_line(ts.geterror()));
   if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
     return texture_error(desc, "the image has no pixels");

@@ -70,10 +70,14 @@ TEST(TextureErrors, CorruptFileNamesTheReason) {
 }
 
 TEST(TextureErrors, TruncatedPixelDataIsFoundAtBuild) {
-  // A valid header with half its pixel data: only reading the pixels finds the damage.
+  // A valid header with half its pixel data: only reading the pixels finds the damage. (EXR rather than
+  // PNG: libpng reports a truncated file by longjmp, which skips a destructor inside OIIO and leaks a
+  // string, so the same test with a PNG passes but fails under LeakSanitizer.)
   ScratchDir dir;
-  const std::string path = dir.file("truncated.png");
-  texture_test::write_png8(path, 256, 256, 3, noise(256 * 256 * 3));
+  const std::string path = dir.file("truncated.exr");
+  std::vector<float> px(128 * 128 * 3);
+  for (size_t i = 0; i < px.size(); ++i) px[i] = float(noise(1)[0]) / 255.0f + float(i % 7);
+  texture_test::write_exr(path, 128, 128, 3, px);
   std::filesystem::resize_file(path, std::filesystem::file_size(path) / 2);
   const std::string message = add_error(path);
   EXPECT_TRUE(has_substr(message, path + ": cannot read texture: "));
