@@ -128,7 +128,6 @@ class CausticsSolver final : public sdk::Integrator {
     armed_ = enabled_ && emitters_.emits_photons();
     ScheduleConfig cfg;
     cfg.n_max = kMaxPhotonPaths;
-    cfg.n_min = kMaxPhotonPaths / 64;
     cfg.probe = kProbePaths;
     cfg.camera_paths = std::max<uint64_t>(1, uint64_t(width_) * height_);
     schedule_ = PhotonSchedule(cfg);
@@ -710,10 +709,13 @@ class CausticsSolver final : public sdk::Integrator {
     float wo_arr[3];
     wo.store(wo_arr);
     const float kernel_norm = 2 / (kPi * r2);
+    // Photons on the same flat surface carry the same quantised normal: skip decoding those.
+    const uint32_t ng_code = encode_octahedral(ng);
+    Rgb sum(0);  // without LightMix, one record entry per lookup
     map_.query(Vec3f::load(ix.p), r, [&](const Photon &ph, float d2) {
       const uint32_t k = s + ph.depth();
       if (k > max_depth_) return;
-      if (!(dot(decode_octahedral(ph.normal), ng) > 0)) return;
+      if (ph.normal != ng_code && !(dot(decode_octahedral(ph.normal), ng) > 0)) return;
       const Vec3f wp = decode_octahedral(ph.dir);
       float wp_arr[3], f[3], pdf_fwd = 0, pdf_rev = 0;
       wp.store(wp_arr);
@@ -723,10 +725,14 @@ class CausticsSolver final : public sdk::Integrator {
       const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, a_r_neff, m_neff,
                                    m_neff, first_rough, cam.mis.gamma_sum(k));
       const float kernel = kernel_norm * (1 - d2 / r2);
-      const Rgb c = beta * fr * Rgb::load(ph.power) * (w * kernel * inv_paths);
+      const Rgb c = fr * Rgb::load(ph.power) * (w * kernel);
       if (!is_finite(c) || is_black(c)) return;
-      rec.add_merge(c, light_group_[ph.light()], ids_);
+      if (ids_.lightmix)
+        rec.add_merge(beta * c * inv_paths, light_group_[ph.light()], ids_);
+      else
+        sum += c;
     });
+    if (!ids_.lightmix && !is_black(sum)) rec.add_merge(beta * sum * inv_paths, 0, ids_);
   }
 
   bool has_sample_film() const { return NIMBUS_HAS_MEMBER(camera_, nimbus_host_camera_v1_t, sample_film); }

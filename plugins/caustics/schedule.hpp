@@ -23,10 +23,21 @@ inline float merge_radius(float theta_pix, float ell, uint32_t j, float scene_ra
 }
 
 struct ScheduleConfig {
-  uint64_t n_max = uint64_t(1) << 20;  // photon paths per pass at u = 1
-  uint64_t n_min = (uint64_t(1) << 20) / 64;
+  uint64_t n_max = uint64_t(1) << 22;  // photon paths per pass at u = 1 (spec 5)
+  // Cap on a map's size in camera passes' worth of paths (0: none). A map serves k = N / N_cam camera
+  // passes and each pass evaluates every stored photon in ~pi 1.5^2 lookups, so lookup work per
+  // iteration grows with the map while its photon noise does not shrink with the reuse. Without
+  // Metropolis guiding (which wants large batches) 4 passes per map (the paper's example ratio) keeps
+  // the per-iteration cost bounded on small machines and small render regions.
+  uint64_t max_passes_per_map = 4;
   uint64_t probe = uint64_t(1) << 16;  // the first pass
-  uint64_t camera_paths = 1;           // camera paths per iteration (pixels)
+  uint64_t min_floor = 4096;           // N_min never below this
+  uint64_t camera_paths = 1;           // camera paths per iteration (the render region's pixels)
+
+  uint64_t effective_max() const {
+    return max_passes_per_map ? std::min(n_max, std::max<uint64_t>(1, max_passes_per_map * camera_paths)) : n_max;
+  }
+  uint64_t effective_min() const { return std::min(effective_max(), std::max(min_floor, effective_max() / 64)); }
 };
 
 class PhotonSchedule {
@@ -38,9 +49,10 @@ class PhotonSchedule {
   uint64_t plan(uint64_t iteration) const {
     if (dormant_ || iteration < next_pass_) return 0;
     if (passes_ == 0) return cfg_.probe;
-    if (idle_ > 0) return cfg_.n_min;
-    const double n = std::round(u_ * double(cfg_.n_max));
-    return uint64_t(std::clamp(n, double(cfg_.n_min), double(cfg_.n_max)));
+    const uint64_t lo = cfg_.effective_min(), hi = cfg_.effective_max();
+    if (idle_ > 0) return lo;
+    const double n = std::round(u_ * double(hi));
+    return uint64_t(std::clamp(n, double(lo), double(hi)));
   }
 
   // A photon pass of `paths` paths stored `stored` photons before the camera pass of `iteration`.

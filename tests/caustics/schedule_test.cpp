@@ -29,10 +29,30 @@ TEST(CausticsSchedule, RadiusStartsAtOneAndAHalfPixelsAndShrinks) {
 ScheduleConfig config(uint64_t camera_paths) {
   ScheduleConfig c;
   c.n_max = 1 << 20;
-  c.n_min = c.n_max / 64;
+  c.max_passes_per_map = 0;  // no cap: N_min = N_max / 64
   c.probe = 1 << 16;
   c.camera_paths = camera_paths;
   return c;
+}
+
+// The cap: a map holds at most 4 camera passes' worth of photon paths; N_min = N_max / 64 (floored).
+TEST(CausticsSchedule, MapSizeCappedByCameraPasses) {
+  ScheduleConfig c;
+  c.n_max = 1 << 22;
+  c.camera_paths = 640 * 360;
+  EXPECT_EQ(c.effective_max(), 4u * 640 * 360);
+  EXPECT_EQ(c.effective_min(), 4u * 640 * 360 / 64);
+  c.camera_paths = 4000 * 3000;
+  EXPECT_EQ(c.effective_max(), 1u << 22);
+  c.camera_paths = 80 * 45;
+  EXPECT_EQ(c.effective_max(), 4u * 80 * 45);
+  EXPECT_EQ(c.effective_min(), 4096u);
+  PhotonSchedule s(c);
+  EXPECT_EQ(s.plan(1), 1u << 16);  // the probe is not capped
+  s.pass_done(1, 1 << 16, 10);
+  EXPECT_EQ(s.next_pass(), 1u + 18);  // 65536 / 3600 = 18 camera passes
+  s.iteration_done(18, 1.0);
+  EXPECT_EQ(s.plan(19), 4u * 80 * 45);
 }
 
 TEST(CausticsSchedule, ProbeThenBudgetFromUsefulPixels) {
