@@ -35,24 +35,31 @@ ScheduleConfig config(uint64_t camera_paths) {
   return c;
 }
 
-// The cap: a map holds at most 4 camera passes' worth of photon paths; N_min = N_max / 64 (floored).
+// The cap: a map holds at most two camera passes' worth of photon paths (default); N_min = N_max / 64
+// (floored at 4096).
 TEST(CausticsSchedule, MapSizeCappedByCameraPasses) {
   ScheduleConfig c;
   c.n_max = 1 << 22;
-  c.camera_paths = 640 * 360;
-  EXPECT_EQ(c.effective_max(), 4u * 640 * 360);
-  EXPECT_EQ(c.effective_min(), 4u * 640 * 360 / 64);
+  c.camera_paths = 1280 * 720;
+  EXPECT_EQ(c.effective_max(), 2u * 1280 * 720);
+  EXPECT_EQ(c.effective_min(), 2u * 1280 * 720 / 64);
   c.camera_paths = 4000 * 3000;
   EXPECT_EQ(c.effective_max(), 1u << 22);
+  c.max_passes_per_map = 4;
+  c.camera_paths = 640 * 360;
+  EXPECT_EQ(c.effective_max(), 4u * 640 * 360);
+  c.max_passes_per_map = 1;
   c.camera_paths = 80 * 45;
-  EXPECT_EQ(c.effective_max(), 4u * 80 * 45);
-  EXPECT_EQ(c.effective_min(), 4096u);
+  EXPECT_EQ(c.effective_max(), 80u * 45);
+  EXPECT_EQ(c.effective_min(), 80u * 45);
   PhotonSchedule s(c);
   EXPECT_EQ(s.plan(1), 1u << 16);  // the probe is not capped
   s.pass_done(1, 1 << 16, 10);
   EXPECT_EQ(s.next_pass(), 1u + 18);  // 65536 / 3600 = 18 camera passes
   s.iteration_done(18, 1.0);
-  EXPECT_EQ(s.plan(19), 4u * 80 * 45);
+  EXPECT_EQ(s.plan(19), 80u * 45);
+  s.pass_done(19, 80 * 45, 10);
+  EXPECT_EQ(s.next_pass(), 20u);  // then one photon pass per camera pass
 }
 
 TEST(CausticsSchedule, ProbeThenBudgetFromUsefulPixels) {
