@@ -1,11 +1,18 @@
 // nimbus.host.bsdf@1: world-space forwarding to the local-frame BSDFs, with the adjoint shading-normal
 // correction for importance transport (Veach 1997, section 5.3), and per-point BSDFs for textured
 // materials (textures and normal maps).
+#include <optional>
+
 #include "abi/host_services.hpp"
 #include "abi/service_tables.hpp"
 
 namespace nimbus {
 namespace {
+
+TexturedMaterials::SurfacePoint surface_point(const nimbus_interaction_t *ix) {
+  return {Vec3f::load(ix->ng), Vec3f::load(ix->ns), Vec3f::load(ix->dpdu), Vec3f::load(ix->dpdv),
+          Vec2f{ix->uv[0], ix->uv[1]}};
+}
 
 // The BSDF and shading frame at an interaction. Untextured materials use the BSDF built with the scene (no
 // lookups, no copies); textured ones get theirs built here from texture lookups at ix->uv, and a normal map
@@ -18,14 +25,10 @@ class Local {
     if (!textured || !textured->textured(ix->material)) {
       bsdf_ = &ctx.bsdfs[ix->material];
     } else {
-      const Vec2f uv{ix->uv[0], ix->uv[1]};
-      own_ = textured->bsdf(ix->material, uv);
-      bsdf_ = &own_;
-      if (textured->has_normal_map(ix->material)) {
-        ns_ = textured->shading_normal(ix->material, uv, ns_, Vec3f::load(ix->ng), Vec3f::load(ix->dpdu),
-                                       Vec3f::load(ix->dpdv));
-        mapped_ = true;
-      }
+      const TexturedMaterials::Shading &s = own_.emplace(textured->shade(ix->material, surface_point(ix)));
+      bsdf_ = &s.bsdf;
+      ns_ = s.ns;
+      mapped_ = s.normal_mapped;
     }
     frame_ = Frame::from_normal_tangent(ns_, Vec3f::load(ix->dpdu));
   }
@@ -57,7 +60,7 @@ class Local {
 
  private:
   const Bsdf *bsdf_ = nullptr;
-  Bsdf own_;
+  std::optional<TexturedMaterials::Shading> own_;  // textured materials only
   Vec3f ns_;
   bool mapped_ = false;
   Frame frame_;
@@ -70,7 +73,7 @@ auto at_point(const nimbus_host_t *host, const nimbus_interaction_t *ix, F &&que
   const RenderContext &ctx = context_of(host);
   const TexturedMaterials *textured = ctx.textures.get();
   if (textured && textured->varies_lobes(ix->material))
-    return query(textured->bsdf(ix->material, Vec2f{ix->uv[0], ix->uv[1]}));
+    return query(textured->shade(ix->material, surface_point(ix)).bsdf);
   return query(ctx.bsdfs[ix->material]);
 }
 

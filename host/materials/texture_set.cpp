@@ -24,6 +24,7 @@ enum class Decode { None, Srgb, Gamma };
 
 struct Texture {
   OIIO::TextureSystem::TextureHandle *handle = nullptr;
+  int x = 0, y = 0;  // the data window's origin, for reading texels by index
   int width = 0, height = 0;
   int channels = 1;  // looked up: 1 (grey or data) or 3 (RGB)
   Decode decode = Decode::None;
@@ -133,19 +134,27 @@ struct TextureSet::Impl {
   void lookup(const Texture &tex, Vec2f st, float *out) const {
     if (tex.decode == Decode::None) return fetch(tex, OIIO::TextureOpt::InterpBilinear, st.x, st.y, out);
     // Decode before filtering (as GPUs do with sRGB formats): blending encoded values and decoding the
-    // blend would darken every edge between texels. So the four texels are fetched one by one.
+    // blend would darken every edge between texels. So the four texels are read and decoded one by one:
+    // as one 2x2 block inside the image, by four nearest-texel lookups (which wrap) at its edges.
     const float x = st.x * float(tex.width) - 0.5f, y = st.y * float(tex.height) - 0.5f;
     const float x0 = std::floor(x), y0 = std::floor(y), fx = x - x0, fy = y - y0;
-    for (int c = 0; c < tex.channels; ++c) out[c] = 0;
-    for (int j = 0; j < 2; ++j) {
-      for (int i = 0; i < 2; ++i) {
-        const float w = (i ? fx : 1 - fx) * (j ? fy : 1 - fy);
-        if (w == 0) continue;
-        float texel[3];
-        fetch(tex, OIIO::TextureOpt::InterpClosest, (x0 + float(i) + 0.5f) / float(tex.width),
-              (y0 + float(j) + 0.5f) / float(tex.height), texel);
-        for (int c = 0; c < tex.channels; ++c) out[c] += w * decode_value(tex, texel[c]);
-      }
+    const float bx = x0 - float(tex.width) * std::floor(x0 / float(tex.width));  // x0 wrapped into the image
+    const float by = y0 - float(tex.height) * std::floor(y0 / float(tex.height));
+    const int c_n = tex.channels;
+    float texels[4 * 3];  // (0, 0), (1, 0), (0, 1), (1, 1), c_n channels each
+    OIIO::TextureOpt opt;
+    const bool inside = bx + 1 < float(tex.width) && by + 1 < float(tex.height);
+    if (!inside ||
+        !ts->get_texels(tex.handle, nullptr, opt, 0, tex.x + int(bx), tex.x + int(bx) + 2, tex.y + int(by),
+                        tex.y + int(by) + 2, 0, 1, 0, c_n, OIIO::TypeDesc::FLOAT, texels)) {
+      for (int k = 0; k < 4; ++k)
+        fetch(tex, OIIO::TextureOpt::InterpClosest, (x0 + float(k & 1) + 0.5f) / float(tex.width),
+              (y0 + float(k >> 1) + 0.5f) / float(tex.height), &texels[k * c_n]);
+    }
+    for (int c = 0; c < c_n; ++c) out[c] = 0;
+    for (int k = 0; k < 4; ++k) {
+      const float w = (k & 1 ? fx : 1 - fx) * (k >> 1 ? fy : 1 - fy);
+      for (int c = 0; c < c_n; ++c) out[c] += w * decode_value(tex, texels[k * c_n + c]);
     }
   }
 
@@ -193,9 +202,8 @@ Expected<TextureSet::Id> TextureSet::add(const TextureDesc &desc, Kind kind, int
   if (spec.nchannels < min_channels)
     return texture_error(desc, "needs " + std::to_string(min_channels) + " channels, the image has " +
                                    std::to_string(spec.nchannels));
-  // Lookups use the display window (full_*), which is what the texture coordinates span.
-  tex.width = spec.full_width > 0 ? spec.full_width : spec.width;
-  tex.height = spec.full_height > 0 ? spec.full_height : spec.height;
+  tex.x = spec.x, tex.y = spec.y;
+  tex.width = spec.width, tex.height = spec.height;
   tex.channels = kind == Kind::Color && spec.nchannels >= 3 ? 3 : (min_channels >= 3 ? 3 : 1);
   tex.decode = decode_of(spec, kind, tex.gamma);
   if (std::string reason = impl_->read_all(tex, spec); !reason.empty()) return texture_error(desc, reason);

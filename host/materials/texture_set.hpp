@@ -1,7 +1,8 @@
 // Image textures for materials, read through OpenImageIO's TextureSystem: tiles are cached (bounded memory,
-// shared by all render threads) and untiled, un-MIP-mapped files are tiled and MIP-mapped on demand.
-// Every file is opened and read once when added, so a missing, unreadable or truncated texture is an
-// error at scene build, never a silent black surface halfway through a render.
+// shared by all render threads; the system lives for the process, each set releases its files when it
+// dies) and untiled, un-MIP-mapped files are tiled and MIP-mapped on demand. Every file is opened and read
+// once when added, so a missing, unreadable or truncated texture is an error at scene build, never a
+// silent black surface halfway through a render.
 #pragma once
 
 #include <cstdint>
@@ -32,8 +33,8 @@ class TextureSet {
   Expected<Id> add(const TextureDesc &texture, Kind kind, int min_channels = 1);
 
   // Bilinear lookup at texture coordinates (s, t) with OpenImageIO's orientation (t = 0 is the top row,
-  // texel centres at (i + 1/2) / size), wrapping periodically. Colour is linear; one-channel files give
-  // grey. Safe to call from any number of threads at once.
+  // texel centres at (i + 1/2) / size), wrapping periodically; sRGB texels are decoded before they are
+  // blended. Colour is linear; one-channel files give grey. Safe to call from any number of threads.
   Rgb rgb(Id id, Vec2f st) const;
   // The first channel.
   float scalar(Id id, Vec2f st) const;

@@ -1,16 +1,23 @@
 #include "materials/textured_materials.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <cstring>
 
 #include "materials/normal_map.hpp"
 
 namespace nimbus {
+
+namespace {
+std::atomic<uint64_t> next_instance{1};
+}  // namespace
 
 Expected<std::unique_ptr<TexturedMaterials>> TexturedMaterials::build(
     const std::vector<MaterialDesc> &materials) {
   if (std::none_of(materials.begin(), materials.end(), [](const MaterialDesc &m) { return m.textured(); }))
     return std::unique_ptr<TexturedMaterials>();
   auto set = std::make_unique<TexturedMaterials>();
+  set->instance_ = next_instance.fetch_add(1);
   set->materials_ = materials;
   set->bindings_.resize(materials.size());
   for (size_t i = 0; i < materials.size(); ++i) {
@@ -47,6 +54,25 @@ Vec3f TexturedMaterials::shading_normal(uint64_t material, Vec2f uv, const Vec3f
   const Vec2f st = texture_coordinates(uv, materials_[material].uv_scale);
   const Vec3f m = decode_normal(textures_.rgb(bindings_[material].normal, st));
   return apply_normal_map(m, ns, ng, dpdu, dpdv);
+}
+
+TexturedMaterials::Shading TexturedMaterials::shade(uint64_t material, const SurfacePoint &p) const {
+  struct Last {
+    uint64_t owner = 0, material = 0;
+    SurfacePoint point;
+    Shading shading;
+  };
+  thread_local Last last;
+  static_assert(sizeof(SurfacePoint) == 14 * sizeof(float), "compared bitwise: no padding");
+  if (last.owner == instance_ && last.material == material && std::memcmp(&last.point, &p, sizeof(p)) == 0)
+    return last.shading;
+  Shading s{bsdf(material, p.uv), p.ns, false};
+  if (has_normal_map(material)) {
+    s.ns = shading_normal(material, p.uv, p.ns, p.ng, p.dpdu, p.dpdv);
+    s.normal_mapped = true;
+  }
+  last = {instance_, material, p, s};
+  return s;
 }
 
 }  // namespace nimbus

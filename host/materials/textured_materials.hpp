@@ -29,6 +29,21 @@ class TexturedMaterials {
     return textured(material) && bindings_[material].normal != kNone;
   }
 
+  // A surface point as shading sees it: world space, ns and ng unit and on the same side.
+  struct SurfacePoint {
+    Vec3f ng, ns, dpdu, dpdv;
+    Vec2f uv;
+  };
+  struct Shading {
+    Bsdf bsdf;
+    Vec3f ns;  // the normal the BSDF's frame is built on
+    bool normal_mapped = false;
+  };
+  // bsdf() and shading_normal() at p, for a textured material. The last result is kept per thread:
+  // integrators ask several questions at one vertex (lobes, sample, eval towards a light sample), and
+  // texture lookups cost far more than comparing the point.
+  Shading shade(uint64_t material, const SurfacePoint &p) const;
+
   // The material's BSDF at surface coordinates uv (a textured material).
   Bsdf bsdf(uint64_t material, Vec2f uv) const;
   // The shading normal after the material's normal map (one that has_normal_map), in world space: ns tilted
@@ -47,6 +62,7 @@ class TexturedMaterials {
     TextureSet::Id albedo = kNone, roughness = kNone, normal = kNone;
   };
 
+  uint64_t instance_ = 0;                // never reused: keys the per-thread cache of shade()
   std::vector<MaterialDesc> materials_;  // the constants the textures do not replace
   std::vector<Binding> bindings_;        // one per material
   TextureSet textures_;

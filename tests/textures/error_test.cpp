@@ -6,7 +6,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <random>
 
 #include "e2e/subprocess.hpp"
 #include "materials/textured_materials.hpp"
@@ -27,13 +26,6 @@ std::string add_error(const std::string &path, TextureSet::Kind kind = TextureSe
   auto id = set.add(texture_at(path), kind, channels);
   EXPECT_FALSE(id.ok()) << path << " was accepted";
   return id.ok() ? std::string() : id.error().message;
-}
-
-std::vector<uint8_t> noise(size_t n) {
-  std::mt19937 rng(3);
-  std::vector<uint8_t> out(n);
-  for (uint8_t &b : out) b = uint8_t(rng());
-  return out;
 }
 
 TEST(TextureErrors, MissingFileNamesPathReasonAndSceneLocation) {
@@ -76,7 +68,7 @@ TEST(TextureErrors, TruncatedPixelDataIsFoundAtBuild) {
   ScratchDir dir;
   const std::string path = dir.file("truncated.exr");
   std::vector<float> px(128 * 128 * 3);
-  for (size_t i = 0; i < px.size(); ++i) px[i] = float(noise(1)[0]) / 255.0f + float(i % 7);
+  for (size_t i = 0; i < px.size(); ++i) px[i] = float(i % 251) / 251;
   texture_test::write_exr(path, 128, 128, 3, px);
   std::filesystem::resize_file(path, std::filesystem::file_size(path) / 2);
   const std::string message = add_error(path);
@@ -91,7 +83,7 @@ TEST(TextureErrors, NormalMapNeedsThreeChannels) {
                          "grey.png: cannot read texture: needs 3 channels, the image has 1"));
 }
 
-// A scene file in a scratch directory whose material names `texture_yaml`.
+// A scene file in a scratch directory with one material, m, written as `material_yaml`.
 std::string write_scene(const ScratchDir &dir, const std::string &material_yaml) {
   const std::string path = dir.file("scene.yaml");
   texture_test::write_text(path,
@@ -127,13 +119,14 @@ TEST(TextureErrors, CliExitsNonZeroNamingPathAndReason) {
        {std::tuple<std::string, std::string, std::string>{
             "{ type: diffuse, albedo: { texture: missing.png } }", "missing.png",
             "No such file or directory"},
-        {"{ type: conductor, metal: gold, roughness: { texture: bad.jpg } }", "bad.jpg", ""},
+        {"{ type: conductor, metal: gold, roughness: { texture: bad.jpg } }", "bad.jpg", "not a JPEG file"},
         {"{ type: dielectric, normal_map: missing_n.png }", "missing_n.png", "No such file or directory"}}) {
     write_scene(dir, material);
     const e2e::ProcessResult r = e2e::run_process(
         {NIMBUS_CLI, "render", "scene.yaml", "-o", "out.exr", "--iterations", "1"}, dir.path());
     EXPECT_TRUE(r.exited && r.exit_code != 0) << r.describe();
-    EXPECT_TRUE(has_substr(r.err, dir.file(file) + ": cannot read texture: " + reason)) << r.err;
+    EXPECT_TRUE(has_substr(r.err, dir.file(file) + ": cannot read texture: ")) << r.err;
+    EXPECT_TRUE(has_substr(r.err, reason)) << r.err;
     EXPECT_TRUE(has_substr(r.err, "scene.yaml:3:")) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("out.exr")));
   }

@@ -118,6 +118,20 @@ TEST(TextureLookup, GreyAndAlphaFilesGiveGrey) {
                   Rgb(l188, float(srgb8_to_linear(64)), 0), 1e-6f);
 }
 
+TEST(TextureLookup, GreyCheckerIsFilteredAfterDecoding) {
+  // One channel: texels are packed differently from RGB, inside the image and across its edges.
+  ScratchDir dir;
+  texture_test::write_png8(dir.file("grey.png"), 3, 2, 1, {188, 0, 64, 0, 188, 255});
+  TextureSet set;
+  const auto id = add_ok(set, dir.file("grey.png"), TextureSet::Kind::Color);
+  const auto lin = [](int code) { return float(srgb8_to_linear(code)); };
+  const float mean4 = (lin(188) + lin(0) + lin(0) + lin(188)) / 4;
+  expect_rgb_near(set.rgb(id, {1 / 3.0f, 0.5f}), Rgb(mean4), 1e-5f);  // inside
+  expect_rgb_near(set.rgb(id, {2 / 3.0f, 0.5f}), Rgb((lin(0) + lin(64) + lin(188) + lin(255)) / 4), 1e-5f);
+  expect_rgb_near(set.rgb(id, {0.0f, 0.25f}), Rgb((lin(188) + lin(64)) / 2), 1e-5f);  // wraps in s
+  expect_rgb_near(set.rgb(id, {0.5f / 3, 0.75f}), Rgb(lin(0)), 1e-6f);                // a texel centre
+}
+
 TEST(TextureLookup, JpegIsSrgbAndHdrIsLinear) {
   ScratchDir dir;
   // A uniform image: JPEG's block transform keeps a flat block's value.
