@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <nimbus/version.h>
+
 #include "cli/commands.hpp"
 
 namespace {
@@ -31,7 +33,9 @@ int main(int argc, char **argv) {
   const std::string cmd = argv[1];
   const std::vector<std::string> args(argv + 2, argv + argc);
   if (cmd == "--version" || cmd == "version") {
-    std::printf("nimbus %s (SDK ABI %d.%d.%d)\n", NIMBUS_VERSION_STRING, 1, 0, 0);
+    // The ABI this host serves comes from the SDK headers it was built with, never a literal.
+    std::printf("nimbus %s (SDK ABI %d.%d.%d)\n", NIMBUS_VERSION_STRING, NIMBUS_ABI_MAJOR, NIMBUS_ABI_MINOR,
+                NIMBUS_ABI_PATCH);
     return kExitOk;
   }
   if (cmd == "--help" || cmd == "-h" || cmd == "help") {

@@ -18,39 +18,39 @@ extern "C" {
 #define NIMBUS_LIGHT_DELTA_DIRECTION 2u /* directional */
 #define NIMBUS_LIGHT_INFINITE 4u        /* environment, sun: at infinity, found by missed rays */
 #define NIMBUS_LIGHT_AREA 8u            /* emissive geometry, found by hitting it */
-#define NIMBUS_LIGHT_TWO_SIDED 16u      /* area light emitting from both sides of its surface */
+#define NIMBUS_LIGHT_TWO_SIDED 16u      /* since 1.1: area light emitting from both sides of its surface */
 
 #define NIMBUS_S_TYPE_LIGHT_INFO 16u
 typedef struct nimbus_light_info {
   nimbus_struct_header_t header; /* s_type = NIMBUS_S_TYPE_LIGHT_INFO; caller zero-fills and sets size */
   uint32_t flags;
-  uint32_t group;          /* LightMix group index */
-  float power;             /* emitted flux, luminance of W (infinite lights: through the scene's disk) */
-  float bounds_min[3];     /* world bounds of the emitter (infinite lights: the scene bounds) */
+  uint32_t group;      /* LightMix group index */
+  float power;         /* emitted flux, luminance of W (infinite lights: through the scene's disk) */
+  float bounds_min[3]; /* world bounds of the emitter (infinite lights: the scene bounds) */
   float bounds_max[3];
-  float axis[3];           /* main emission direction (area, spot, sun); zero if none */
-  float cos_theta_o;       /* cone of normals around axis: cos of half angle (-1: all directions) */
-  float cos_theta_e;       /* emission spread beyond the normal cone: cos (0: hemisphere per normal) */
+  float axis[3];     /* main emission direction (area, spot, sun); zero if none */
+  float cos_theta_o; /* cone of normals around axis: cos of half angle (-1: all directions) */
+  float cos_theta_e; /* emission spread beyond the normal cone: cos (0: hemisphere per normal) */
 } nimbus_light_info_t;
 
 typedef struct nimbus_light_incident {
-  float wi[3];     /* unit direction from the receiver towards the light */
-  float dist;      /* distance to the light point (INFINITY for infinite lights) */
-  float p[3];      /* light point (for spawn_ray_to); for infinite lights a point far away */
-  float n[3];      /* light surface normal at p (zero for point and infinite lights) */
-  float L[3];      /* incident radiance (area, infinite) or intensity / dist^2 (delta lights) */
-  float pdf;       /* solid-angle pdf of wi (1 for delta lights); 0 = no sample */
-  uint32_t flags;  /* light flags */
+  float wi[3];    /* unit direction from the receiver towards the light */
+  float dist;     /* distance to the light point (INFINITY for infinite lights) */
+  float p[3];     /* light point (for spawn_ray_to); for infinite lights a point far away */
+  float n[3];     /* light surface normal at p (zero for point and infinite lights) */
+  float L[3];     /* incident radiance (area, infinite) or intensity / dist^2 (delta lights) */
+  float pdf;      /* solid-angle pdf of wi (1 for delta lights); 0 = no sample */
+  uint32_t flags; /* light flags */
   uint32_t reserved;
 } nimbus_light_incident_t;
 
 typedef struct nimbus_light_emission {
-  float org[3];    /* photon origin */
-  float dir[3];    /* photon direction */
-  float n[3];      /* surface normal at org (zero for point lights; the direction for infinite lights) */
-  float Le[3];     /* emitted radiance (or intensity) along dir */
-  float pdf_pos;   /* area pdf of org (1 for delta positions; 1/(pi R^2) for infinite lights) */
-  float pdf_dir;   /* solid-angle pdf of dir (1 for delta directions) */
+  float org[3];  /* photon origin */
+  float dir[3];  /* photon direction */
+  float n[3];    /* surface normal at org (zero for point lights; the direction for infinite lights) */
+  float Le[3];   /* emitted radiance (or intensity) along dir */
+  float pdf_pos; /* area pdf of org (1 for delta positions; 1/(pi R^2) for infinite lights) */
+  float pdf_dir; /* solid-angle pdf of dir (1 for delta directions) */
   uint32_t flags;
   uint32_t reserved;
 } nimbus_light_emission_t;

@@ -24,9 +24,9 @@ typedef struct nimbus_hit {
 } nimbus_hit_t;
 
 /* nimbus_interaction_t.flags */
-#define NIMBUS_IX_FRONT_FACE 1u  /* the ray arrived on the side the geometric normal points to */
-#define NIMBUS_IX_EMISSIVE 2u    /* the surface emits: light_id names the light */
-#define NIMBUS_IX_TWO_SIDED 4u   /* the surface's emission (if any) leaves both sides */
+#define NIMBUS_IX_FRONT_FACE 1u /* the ray arrived on the side the geometric normal points to */
+#define NIMBUS_IX_EMISSIVE 2u   /* the surface emits: light_id names the light */
+#define NIMBUS_IX_TWO_SIDED 4u  /* the surface's emission (if any) leaves both sides */
 
 /* A surface point. ng and ns are unit length and point to the same side (the outside of closed shapes,
  * not flipped towards the ray); dpdu is the shading tangent. `eps` is the distance to offset new rays
@@ -56,8 +56,8 @@ typedef struct nimbus_host_scene_query_v1 {
                       nimbus_interaction_t *out);
   /* [any-thread] Ray leaving `ix` (borrowed) in direction `dir` (borrowed, unit) up to distance tfar,
    * with its origin offset to the side dir points to. out is caller storage. */
-  void (*spawn_ray)(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float dir[3],
-                    float tfar, nimbus_ray_t *out);
+  void (*spawn_ray)(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float dir[3], float tfar,
+                    nimbus_ray_t *out);
   /* [any-thread] Shadow ray from `ix` to point `p` (borrowed), both ends offset so neither surface
    * occludes it. out is caller storage. */
   void (*spawn_ray_to)(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float p[3],
@@ -81,7 +81,8 @@ typedef struct nimbus_host_camera_v1 {
   /* [any-thread] Image width and height in pixels (out) and the angular width of one pixel at the
    * image centre, in radians (returned). */
   float (*resolution)(const nimbus_host_t *host, uint32_t *width, uint32_t *height);
-  /* [any-thread] Connects world point p (borrowed) to the lens, for light tracing. lens_u (borrowed)
+  /* Since 1.1 (absent from a 1.0 host's table: check NIMBUS_HAS_MEMBER before calling).
+   * [any-thread] Connects world point p (borrowed) to the lens, for light tracing. lens_u (borrowed)
    * picks the lens point (ignored by pinholes). Fills raster (out: continuous pixel position) and
    * lens_point (out: where a visibility ray from p must arrive). Returns the importance factor
    * W = cos(theta) / (d^2 * A_pixel * cos^4(theta)) (d: distance p-lens, theta: angle to the view axis,
@@ -89,7 +90,8 @@ typedef struct nimbus_host_camera_v1 {
    * the lens adds L * W to the pixel's mean; 0 when p does not project onto the image. */
   float (*connect)(const nimbus_host_t *host, const float p[3], const float lens_u[2], float raster[2],
                    float lens_point[3]);
-  /* [any-thread] Film position (film: out, raster pixels) of a camera sample of pixel (x, y) drawn with u
+  /* Since 1.1 (absent from a 1.0 host's table: check NIMBUS_HAS_MEMBER before calling).
+   * [any-thread] Film position (film: out, raster pixels) of a camera sample of pixel (x, y) drawn with u
    * (borrowed, 2 numbers) from the scene's pixel filter; returns the sample's weight (multiply the
    * sample's radiance by it). The position always lies in pixel (x, y)'s filter support, and the
    * sample is accumulated into pixel (x, y). */

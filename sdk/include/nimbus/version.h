@@ -31,9 +31,12 @@
 #endif
 
 /* The ABI these headers describe. A plugin loads iff its major equals the host's and its minor is not
- * newer; in 0.x the minor must match exactly. Patch never matters. */
+ * newer; in 0.x the minor must match exactly. Patch never matters.
+ * A minor only appends: members marked "Since 1.N" exist in tables built with SDK 1.N or later, so a
+ * caller holding a table from an older plugin or host checks NIMBUS_HAS_MEMBER before using them.
+ * Changelog: docs/sdk-guide.md. Frozen copies of each minor's headers: tests/abi/sdk-1.N/. */
 #define NIMBUS_ABI_MAJOR 1
-#define NIMBUS_ABI_MINOR 0
+#define NIMBUS_ABI_MINOR 1
 #define NIMBUS_ABI_PATCH 0
 
 typedef struct nimbus_version {
@@ -67,7 +70,6 @@ typedef struct nimbus_struct_header {
 
 /* True when a table of `struct_size` bytes contains the member `member` of type `type`. */
 #define NIMBUS_HAS_MEMBER(table, type, member) \
-  ((table) != NULL &&                          \
-   (table)->struct_size >= offsetof(type, member) + sizeof(((const type *)0)->member))
+  ((table) != NULL && (table)->struct_size >= offsetof(type, member) + sizeof(((const type *)0)->member))
 
 #endif /* NIMBUS_VERSION_H */
