@@ -13,6 +13,7 @@
 
 #include "abi/host_services.hpp"
 #include "film/checkpoint.hpp"
+#include "render/plugin_interface.hpp"
 #include "render/plugin_registry.hpp"
 #include "render/render_context.hpp"
 
@@ -37,16 +38,6 @@ struct PluginHandle {
     if (plugin) registry->destroy(plugin);
   }
 };
-
-template <class Table>
-Expected<const Table *> interface_of(const nimbus_plugin_t *plugin, const char *iface, size_t min_size) {
-  const auto *t = static_cast<const Table *>(plugin->get_interface(plugin, iface, 1));
-  if (!t) return Error{std::string("plugin '") + plugin->desc->id + "' does not provide " + iface + "@1"};
-  if (t->struct_size < min_size)
-    return Error{std::string("plugin '") + plugin->desc->id + "': " + iface + " table is too small (" +
-                 std::to_string(t->struct_size) + " bytes)"};
-  return t;
-}
 
 bool has_feature(const nimbus_descriptor_t *d, const char *feature) {
   for (const char *const *f = d->features; f && *f; ++f)
@@ -147,11 +138,11 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   auto sp = registry.create(sampler_id, NIMBUS_KIND_LIGHT_SAMPLER, host);
   if (!sp) return Error{"light sampler: " + sp.error().message};
   sampler.registry = &registry, sampler.plugin = sp.value();
-  auto iface = interface_of<nimbus_integrator_v1_t>(integrator.plugin, NIMBUS_IFACE_INTEGRATOR,
-                                                    sizeof(nimbus_integrator_v1_t));
+  auto iface =
+      interface_of<nimbus_integrator_v1_t>(integrator.plugin, NIMBUS_IFACE_INTEGRATOR, kIntegratorSize10);
   if (!iface) return iface.error();
   auto siface = interface_of<nimbus_light_sampler_v1_t>(sampler.plugin, NIMBUS_IFACE_LIGHT_SAMPLER,
-                                                        offsetof(nimbus_light_sampler_v1_t, record));
+                                                        kLightSamplerMinSize);
   if (!siface) return siface.error();
   const nimbus_integrator_v1_t &it = *iface.value();
   const nimbus_light_sampler_v1_t &ls = *siface.value();
@@ -313,7 +304,9 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       break;
     }
     film.merge_splats();
-    if (ls.end_iteration) ls.end_iteration(sampler.plugin, i);
+    // Optional: a sampler's table may end before end_iteration (kLightSamplerMinSize).
+    if (NIMBUS_HAS_MEMBER(&ls, nimbus_light_sampler_v1_t, end_iteration) && ls.end_iteration)
+      ls.end_iteration(sampler.plugin, i);
     if (nimbus_status_t s = it.end_iteration(integrator.plugin, i); s != NIMBUS_OK) {
       failure = s, failure_hook = "end_iteration";
       break;
