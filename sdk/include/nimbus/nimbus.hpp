@@ -1,14 +1,19 @@
 // Nimbus SDK: optional header-only C++17 wrapper. It compiles entirely into the plugin; only the C
 // tables of the other headers cross the boundary, so this file may change freely between releases.
 //
-//   class MyIntegrator : public nimbus::sdk::Integrator { ... static const nimbus_descriptor_t &descriptor(); };
+//   class MyIntegrator : public nimbus::sdk::Integrator {
+//     ... NIMBUS_DESCRIPTOR(...) and overrides of the hooks ...
+//   };
 //   NIMBUS_PLUGIN_LIBRARY(MyIntegrator)
+//
+// nimbus::sdk::LightSampler and nimbus::sdk::Guide work the same way for the other plugin kinds.
 //
 // Trampolines catch every exception, log its text through the host and return NIMBUS_E_INTERNAL, so no
 // exception ever leaves the plugin.
 #ifndef NIMBUS_NIMBUS_HPP
 #define NIMBUS_NIMBUS_HPP
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 #include <exception>
@@ -192,7 +197,66 @@ class LightSampler : public Plugin {
           *pmf = 0;
           return hot<uint32_t>(p, NIMBUS_NONE, [&] { return self(p)->pick_emitter(u, pmf); });
         },
-        nullptr, nullptr};
+        nullptr,
+        nullptr};
+    return t;
+  }
+};
+
+// Base class for guides ("nimbus.iface.guiding" rev 1), e.g. a Metropolis photon guide. The host does
+// not bind a guide to renders yet (nimbus_render_setup_t.guide stays NULL); an integrator or a test may
+// create one and drive it through this table. Chains are per worker (ctx.worker_index), so no locks.
+class Guide : public Plugin {
+ public:
+  virtual nimbus_status_t prepare(const nimbus_scene_info_t &) { return NIMBUS_OK; }
+  virtual nimbus_status_t begin_iteration(uint64_t) { return NIMBUS_OK; }
+  // Photon paths wanted in this iteration.
+  virtual uint64_t budget() = 0;
+  // Fill u[0, dims) with the primary-sample vector of photon path `path`.
+  virtual void propose(const nimbus_thread_ctx_t &ctx, uint64_t path, float *u, uint32_t dims) = 0;
+  virtual void report(const nimbus_thread_ctx_t &, uint64_t, bool) {}
+  virtual void end_iteration(uint64_t, const nimbus_guide_stats_t &) {}
+
+  const void *interface(const char *id, uint32_t rev) override {
+    return (rev == 1 && std::strcmp(id, NIMBUS_IFACE_GUIDING) == 0) ? &table() : nullptr;
+  }
+
+ private:
+  static Guide *self(const nimbus_plugin_t *p) { return static_cast<Guide *>(from(p)); }
+  // Hooks without a status log an exception and go on: budget() falls back to 0 (no photon paths),
+  // propose() leaves the zero vector it was handed, so a failing guide degrades to no guidance.
+  template <class F>
+  static void quiet(const nimbus_plugin_t *p, const char *hook, F &&f) noexcept {
+    self(p)->guarded(hook, [&] {
+      f();
+      return NIMBUS_OK;
+    });
+  }
+  static const nimbus_guiding_v1_t &table() {
+    static const nimbus_guiding_v1_t t = {
+        sizeof(nimbus_guiding_v1_t),
+        [](const nimbus_plugin_t *p, const nimbus_scene_info_t *i) {
+          return self(p)->guarded("prepare", [&] { return self(p)->prepare(*i); });
+        },
+        [](const nimbus_plugin_t *p, uint64_t it) {
+          return self(p)->guarded("begin_iteration", [&] { return self(p)->begin_iteration(it); });
+        },
+        [](const nimbus_plugin_t *p) {
+          uint64_t n = 0;
+          quiet(p, "budget", [&] { n = self(p)->budget(); });
+          return n;
+        },
+        [](const nimbus_plugin_t *p, const nimbus_thread_ctx_t *c, uint64_t path, float *u, uint32_t dims) {
+          std::fill(u, u + dims, 0.0f);
+          quiet(p, "propose", [&] { self(p)->propose(*c, path, u, dims); });
+        },
+        [](const nimbus_plugin_t *p, const nimbus_thread_ctx_t *c, uint64_t path, int32_t visible) {
+          quiet(p, "report", [&] { self(p)->report(*c, path, visible != 0); });
+        },
+        [](const nimbus_plugin_t *p, uint64_t it, const nimbus_guide_stats_t *stats) {
+          const nimbus_guide_stats_t none{sizeof(nimbus_guide_stats_t), 0, 0, 0};
+          quiet(p, "end_iteration", [&] { self(p)->end_iteration(it, stats ? *stats : none); });
+        }};
     return t;
   }
 };
@@ -249,25 +313,24 @@ struct Library {
 }  // namespace nimbus
 
 // Emits the library's one exported entry point for the listed plugin classes.
-#define NIMBUS_PLUGIN_LIBRARY(...)                                          \
-  extern "C" __attribute__((visibility("default"))) const nimbus_entry_t * \
-  nimbus_plugin_entry(void) {                                               \
-    return &::nimbus::sdk::detail::Library<__VA_ARGS__>::entry();           \
+#define NIMBUS_PLUGIN_LIBRARY(...)                                                                    \
+  extern "C" __attribute__((visibility("default"))) const nimbus_entry_t *nimbus_plugin_entry(void) { \
+    return &::nimbus::sdk::detail::Library<__VA_ARGS__>::entry();                                     \
   }
 
 // A static descriptor: NIMBUS_DESCRIPTOR(id, name, kind, major, minor, patch, features, required).
-#define NIMBUS_DESCRIPTOR(ID, NAME, VENDOR, KIND, MAJOR, MINOR, PATCH, FEATURES, REQUIRED)                   \
-  static const nimbus_descriptor_t &descriptor() {                                                        \
+#define NIMBUS_DESCRIPTOR(ID, NAME, VENDOR, KIND, MAJOR, MINOR, PATCH, FEATURES, REQUIRED)                  \
+  static const nimbus_descriptor_t &descriptor() {                                                          \
     static const nimbus_descriptor_t d = {{sizeof(nimbus_descriptor_t), NIMBUS_S_TYPE_DESCRIPTOR, nullptr}, \
-                                          ID,                                                             \
-                                          NAME,                                                           \
-                                          VENDOR,                                                         \
-                                          {MAJOR, MINOR, PATCH, 0},                                       \
-                                          KIND,                                                           \
-                                          0,                                                              \
-                                          FEATURES,                                                       \
-                                          REQUIRED};                                                      \
-    return d;                                                                                             \
+                                          ID,                                                               \
+                                          NAME,                                                             \
+                                          VENDOR,                                                           \
+                                          {MAJOR, MINOR, PATCH, 0},                                         \
+                                          KIND,                                                             \
+                                          0,                                                                \
+                                          FEATURES,                                                         \
+                                          REQUIRED};                                                        \
+    return d;                                                                                               \
   }
 
 #endif /* NIMBUS_NIMBUS_HPP */
