@@ -260,11 +260,10 @@ NIMBUS_MEMBER(nimbus_host_scene_query_v1_t, bounding_sphere, 48, 8);
 NIMBUS_FROZEN(nimbus_camera_sample_t, 16, 4);
 NIMBUS_MEMBER(nimbus_camera_sample_t, film, 0, 8);
 NIMBUS_MEMBER(nimbus_camera_sample_t, lens, 8, 8);
-NIMBUS_GROWABLE(nimbus_host_camera_v1_t, 32, 8);
+NIMBUS_GROWABLE(nimbus_host_camera_v1_t, 24, 8);
 NIMBUS_MEMBER(nimbus_host_camera_v1_t, struct_size, 0, 4);
 NIMBUS_MEMBER(nimbus_host_camera_v1_t, generate_ray, 8, 8);
 NIMBUS_MEMBER(nimbus_host_camera_v1_t, resolution, 16, 8);
-NIMBUS_MEMBER(nimbus_host_camera_v1_t, connect, 24, 8);
 
 /* version.h */
 NIMBUS_FROZEN(nimbus_version_t, 8, 2);

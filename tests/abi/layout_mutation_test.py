@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""Proves layout_1_0.c can fail: compiles it against edited copies of the live headers.
+"""Proves a layout_1_<minor>.c can fail: compiles it against edited copies of the live headers.
 
     layout_mutation_test.py CC SDK_INCLUDE_DIR LAYOUT_C
 
 appending to a table        -> must compile (tables grow within a major)
-swapping two table members  -> must not compile (every 1.0 plugin would call the wrong hook)
+swapping two table members  -> must not compile (every plugin built earlier would call the wrong hook)
 appending to a hot record   -> must not compile (records live in arrays; their size is frozen)
 """
 
@@ -40,7 +40,7 @@ def main(argv: list[str]) -> int:
     cc, include, layout = argv
     ok, err = compiles(cc, include, layout)
     if not ok:
-        print(f"layout_1_0.c does not compile against the live headers:\n{err}", file=sys.stderr)
+        print(f"{os.path.basename(layout)} does not compile against the live headers:\n{err}", file=sys.stderr)
         return 1
     failures = []
     for label, header, edit, should_compile in MUTATIONS:

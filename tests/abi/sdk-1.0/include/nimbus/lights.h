@@ -18,7 +18,6 @@ extern "C" {
 #define NIMBUS_LIGHT_DELTA_DIRECTION 2u /* directional */
 #define NIMBUS_LIGHT_INFINITE 4u        /* environment, sun: at infinity, found by missed rays */
 #define NIMBUS_LIGHT_AREA 8u            /* emissive geometry, found by hitting it */
-#define NIMBUS_LIGHT_TWO_SIDED 16u      /* area light emitting from both sides of its surface */
 
 #define NIMBUS_S_TYPE_LIGHT_INFO 16u
 typedef struct nimbus_light_info {

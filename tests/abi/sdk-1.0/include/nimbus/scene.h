@@ -81,14 +81,6 @@ typedef struct nimbus_host_camera_v1 {
   /* [any-thread] Image width and height in pixels (out) and the angular width of one pixel at the
    * image centre, in radians (returned). */
   float (*resolution)(const nimbus_host_t *host, uint32_t *width, uint32_t *height);
-  /* [any-thread] Connects world point p (borrowed) to the lens, for light tracing. lens_u (borrowed)
-   * picks the lens point (ignored by pinholes). Fills raster (out: continuous pixel position) and
-   * lens_point (out: where a visibility ray from p must arrive). Returns the importance factor
-   * W = cos(theta) / (d^2 * A_pixel * cos^4(theta)) (d: distance p-lens, theta: angle to the view axis,
-   * A_pixel: one pixel's area on the image plane at distance 1), so that radiance L leaving p towards
-   * the lens adds L * W to the pixel's mean; 0 when p does not project onto the image. */
-  float (*connect)(const nimbus_host_t *host, const float p[3], const float lens_u[2], float raster[2],
-                   float lens_point[3]);
 } nimbus_host_camera_v1_t;
 
 #ifdef __cplusplus
