@@ -37,6 +37,12 @@ function(nimbus_add_plugin target)
     else()
       set(_NIMBUS_PLUGIN_DEST lib/nimbus/plugins)
     endif()
-    install(TARGETS ${target} LIBRARY DESTINATION ${_NIMBUS_PLUGIN_DEST})
+    # Nimbus's own build sets NIMBUS_PLUGIN_INSTALL_COMPONENT (runtime); a third-party project may set it
+    # to package its plugins as a component of its own, else they go to CMake's default component.
+    set(_NIMBUS_PLUGIN_COMPONENT)
+    if(NIMBUS_PLUGIN_INSTALL_COMPONENT)
+      set(_NIMBUS_PLUGIN_COMPONENT COMPONENT ${NIMBUS_PLUGIN_INSTALL_COMPONENT})
+    endif()
+    install(TARGETS ${target} LIBRARY DESTINATION ${_NIMBUS_PLUGIN_DEST} ${_NIMBUS_PLUGIN_COMPONENT})
   endif()
 endfunction()

@@ -1,10 +1,12 @@
 #!/bin/bash
 # sdk_examples_test.sh BUILD_DIR SOURCE_DIR CMAKE GENERATOR MAKE_PROGRAM CC CXX SANITIZE [NM]
 #
-# What a third party does with Nimbus, end to end: install the SDK into a fresh prefix, build the two
-# out-of-tree examples (plugins/examples/) against it with find_package(Nimbus), install them, check
-# they export only the entry, load them with `nimbus plugins` and render a scene with each. Any step
-# failing fails the test; exit 77 means "cannot run in this configuration" (ctest: skipped).
+# What a third party does with Nimbus, end to end: install the `sdk` component into a fresh prefix, check
+# the package's version rule (find_package(Nimbus 1.0) works, a newer minor or another major does not),
+# build the two out-of-tree examples (plugins/examples/, find_package(Nimbus 1.0 REQUIRED)) against that
+# prefix and against the build tree (-DNimbus_DIR=<build>), install them, check they export only the
+# entry, load them with `nimbus plugins` and render a scene with each. Any step failing fails the test;
+# exit 77 means "cannot run in this configuration" (ctest: skipped).
 set -euo pipefail
 
 build=$1 src=$2 cmake=$3 generator=$4 make_program=$5 cc=$6 cxx=$7 sanitize=${8:-OFF} nm=${9:-nm}
@@ -34,20 +36,66 @@ fail() {
   exit 1
 }
 
-# Only the SDK's install rules (sdk/ of the build tree): the test must not depend on every other target
-# of the project being built, and the SDK is what a plugin author installs.
+# Only the `sdk` install component: the test must not depend on every other target of the project being
+# built, and the SDK is what a plugin author installs. It must not drag in the runtime either.
 prefix=$work/nimbus-prefix
-step "install the SDK into $prefix"
-"$cmake" --install "$build/sdk" --prefix "$prefix" >"$work/install.log" || fail "SDK install: $(cat "$work/install.log")"
+step "install the sdk component into $prefix"
+"$cmake" --install "$build" --component sdk --prefix "$prefix" >"$work/install.log" ||
+  fail "SDK install: $(cat "$work/install.log")"
 for f in include/nimbus/nimbus.h include/nimbus/nimbus.hpp lib/cmake/Nimbus/NimbusConfig.cmake \
+  lib/cmake/Nimbus/NimbusConfigVersion.cmake lib/cmake/Nimbus/NimbusTargets.cmake \
   lib/cmake/Nimbus/NimbusPlugin.cmake lib/cmake/Nimbus/nimbus_plugin.map; do
   [[ -f $prefix/$f ]] || fail "the SDK install lacks $f"
+done
+[[ ! -e $prefix/bin && ! -e $prefix/share ]] || fail "the sdk component installed runtime files: $(ls "$prefix")"
+
+# The package version is the headers' ABI version, and SameMajorVersion answers like the plugin loader.
+version_h=$src/sdk/include/nimbus/version.h
+major=$(sed -n 's/^#define NIMBUS_ABI_MAJOR \([0-9]*\)$/\1/p' "$version_h")
+minor=$(sed -n 's/^#define NIMBUS_ABI_MINOR \([0-9]*\)$/\1/p' "$version_h")
+probe=$work/version-probe
+mkdir -p "$probe"
+cat >"$probe/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.17)
+project(nimbus_version_probe NONE)
+find_package(Nimbus ${WANT} REQUIRED)
+message(STATUS "Nimbus_VERSION=${Nimbus_VERSION}")
+CMAKE
+# find_package(Nimbus <want>) against <where> (a -D option) must succeed (1) or fail (0).
+expect_find() {
+  local want=$1 where=$2 ok=$3 log=$work/probe-$1.log
+  rm -rf "$probe/build"
+  if env -u CMAKE_PREFIX_PATH -u Nimbus_DIR "$cmake" -S "$probe" -B "$probe/build" -DWANT="$want" "$where" \
+    -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF >"$log" 2>&1; then
+    [[ $ok == 1 ]] || fail "find_package(Nimbus $want) accepted SDK $major.$minor ($where)"
+    grep -q "Nimbus_VERSION=$major\.$minor\.[0-9]*$" "$log" || fail "wrong Nimbus_VERSION: $(cat "$log")"
+  else
+    [[ $ok == 0 ]] || fail "find_package(Nimbus $want) failed ($where): $(cat "$log")"
+  fi
+}
+for where in "-DCMAKE_PREFIX_PATH=$prefix" "-DNimbus_DIR=$build"; do
+  step "find_package version rule ($where)"
+  expect_find 1.0 "$where" 1
+  expect_find "$major.$minor" "$where" 1
+  expect_find "$major.$((minor + 1))" "$where" 0
+  expect_find "$((major + 1)).0" "$where" 0
 done
 
 plugins=$work/plugins-prefix
 for ex in "${examples[@]}"; do
   IFS=: read -r dir id target <<<"$ex"
-  step "configure, build and install $dir"
+  # The build tree's package (Nimbus_DIR=<build>): configure and build, headers from the source tree.
+  step "configure and build $dir against the build tree"
+  env -u CMAKE_PREFIX_PATH -u Nimbus_DIR "$cmake" -S "$src/plugins/examples/$dir" -B "$work/buildtree-$dir" \
+    -G "$generator" -DCMAKE_MAKE_PROGRAM="$make_program" -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" \
+    -DCMAKE_BUILD_TYPE=Release -DNimbus_DIR="$build" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF \
+    --no-warn-unused-cli >"$work/configure-bt-$dir.log" 2>&1 || fail "configure $dir: $(cat "$work/configure-bt-$dir.log")"
+  "$cmake" --build "$work/buildtree-$dir" >"$work/build-bt-$dir.log" 2>&1 ||
+    fail "build $dir against the build tree: $(cat "$work/build-bt-$dir.log")"
+  "$cmake" "-DNM=$nm" "-DLIBS=$work/buildtree-$dir/lib$target.so" -P "$src/tests/plugins/check_exports.cmake" ||
+    fail "$dir built against the build tree exports more than the entry"
+
+  step "configure, build and install $dir against $prefix"
   # The package registry and the environment must not supply another Nimbus: only $prefix may.
   env -u CMAKE_PREFIX_PATH -u Nimbus_DIR "$cmake" -S "$src/plugins/examples/$dir" -B "$work/build-$dir" \
     -G "$generator" -DCMAKE_MAKE_PROGRAM="$make_program" -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" \
@@ -82,4 +130,4 @@ for ex in "${examples[@]}"; do
   grep -aq "$id" "$out" || fail "$out does not record $id as its integrator"
 done
 ok=1
-echo "both examples built against the installed SDK, loaded and rendered"
+echo "both examples built against the installed SDK and the build tree, loaded and rendered"
