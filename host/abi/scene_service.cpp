@@ -17,8 +17,8 @@ void intersect(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const n
   for (uint32_t i = 0; i < n; ++i) g.intersect(rays[i], hits[i]);
 }
 
-void occluded(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_ray_t *rays, uint8_t *blocked,
-              uint32_t n) {
+void occluded(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_ray_t *rays,
+              uint8_t *blocked, uint32_t n) {
   RenderContext &ctx = context_of(host);
   count_rays(ctx, tc, n);
   const GeometryScene &g = *ctx.geometry;
@@ -41,7 +41,8 @@ void spawn_ray(const nimbus_host_t *, const nimbus_interaction_t *ix, const floa
   out->flags = 0;
 }
 
-void spawn_ray_to(const nimbus_host_t *, const nimbus_interaction_t *ix, const float p[3], nimbus_ray_t *out) {
+void spawn_ray_to(const nimbus_host_t *, const nimbus_interaction_t *ix, const float p[3],
+                  nimbus_ray_t *out) {
   const Vec3f target = Vec3f::load(p);
   const Vec3f to = target - Vec3f::load(ix->p);
   const Vec3f org = offset_origin(Vec3f::load(ix->p), Vec3f::load(ix->ng), ix->eps, to);
@@ -50,8 +51,9 @@ void spawn_ray_to(const nimbus_host_t *, const nimbus_interaction_t *ix, const f
   (d / dist).store(out->dir);
   org.store(out->org);
   out->tnear = 0;
-  // Stop short of the target by its own rounding margin so the surface it lies on never occludes it.
-  out->tfar = std::max(0.0f, dist - surface_epsilon(target, 0) * 4) * (1 - 0x1p-20f);
+  // Light samples already lie off their emitter on this side (area_light.cpp), and point lights lie on no
+  // surface: the ray stops a hair short of the target only so that the target itself is never counted.
+  out->tfar = dist * (1 - 0x1p-20f);
   out->mask = 0xFFFFFFFFu;
   out->flags = 0;
 }
@@ -92,9 +94,13 @@ float sample_film(const nimbus_host_t *host, uint32_t x, uint32_t y, const float
 
 }  // namespace
 
-const nimbus_host_scene_query_v1_t kSceneQueryV1 = {
-    sizeof(nimbus_host_scene_query_v1_t), intersect, occluded, interaction, spawn_ray, spawn_ray_to,
-    bounding_sphere};
+const nimbus_host_scene_query_v1_t kSceneQueryV1 = {sizeof(nimbus_host_scene_query_v1_t),
+                                                    intersect,
+                                                    occluded,
+                                                    interaction,
+                                                    spawn_ray,
+                                                    spawn_ray_to,
+                                                    bounding_sphere};
 
 const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t), generate_ray, resolution, connect,
                                            sample_film};

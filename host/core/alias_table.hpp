@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -39,6 +40,23 @@ class AliasTable {
     // Leftovers are 1 up to rounding.
     for (uint32_t i : large) bins_[i].q = 1, bins_[i].alias = i;
     for (uint32_t i : small) bins_[i].q = 1, bins_[i].alias = i;
+    // sample() draws the in-bin number from the fraction of u * n, and u has 24 bits (the renderer's
+    // random floats): within bin i that fraction takes the values (r_i + j n) / 2^24, j = 0, 1, ... A
+    // threshold q below those steps is met at the rate of a whole step while its sample is weighted by
+    // the far smaller pmf (lights 1e9 apart in power: ~60x too bright). So the pmfs are counted from
+    // the table itself over all 2^24 values of u: the pmf returned is the rate at which sample() picks.
+    constexpr uint64_t kGrid = uint64_t(1) << 24;
+    std::vector<double> pmf(n, 0.0);
+    for (size_t i = 0; i < n; ++i) {
+      const uint64_t m_lo = (uint64_t(i) * kGrid + n - 1) / n, m_end = (uint64_t(i + 1) * kGrid + n - 1) / n;
+      if (m_end <= m_lo) continue;  // more bins than values of u: never reached
+      const double in_bin = double(m_end - m_lo), r_lo = double(m_lo * n - uint64_t(i) * kGrid);
+      const double q_grid = double(bins_[i].q) * double(kGrid);
+      const double kept = q_grid <= r_lo ? 0 : std::min(in_bin, std::ceil((q_grid - r_lo) / double(n)));
+      pmf[i] += kept / double(kGrid);
+      pmf[bins_[i].alias] += (in_bin - kept) / double(kGrid);
+    }
+    for (size_t i = 0; i < n; ++i) bins_[i].pmf = float(pmf[i]);
   }
 
   bool empty() const { return bins_.empty(); }

@@ -56,8 +56,14 @@ constexpr Vec3f max(const Vec3f &a, const Vec3f &b) {
   return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
 constexpr float max_component(const Vec3f &a) { return std::max(a.x, std::max(a.y, a.z)); }
+// How far to move a point off the surface it was computed on when no tighter error bound is at hand
+// (emission points in plugins): 2^-19 of its largest coordinate, a few times the rounding error of a point
+// interpolated on a triangle, so it scales with the scene from 1e-4 to 1e6 units.
+inline float relative_offset(const Vec3f &p) { return std::max(max_component(abs(p)), 0x1p-100f) * 0x1p-19f; }
 constexpr bool is_black(const Vec3f &a) { return a.x == 0 && a.y == 0 && a.z == 0; }
-inline bool is_finite(const Vec3f &a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+inline bool is_finite(const Vec3f &a) {
+  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
 // Rec. 709 luminance of linear RGB.
 constexpr float luminance(const Vec3f &c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 inline Vec3f exp(const Vec3f &a) { return {std::exp(a.x), std::exp(a.y), std::exp(a.z)}; }

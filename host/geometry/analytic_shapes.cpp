@@ -1,5 +1,6 @@
 #include "geometry/analytic_shapes.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace nimbus {
@@ -16,14 +17,17 @@ void bounds_fn(const RTCBoundsFunctionArguments *args) {
                   s->radius * safe_sqrt(1 - sqr(s->normal.z))};
     lo = s->center - e, hi = s->center + e;
   }
-  // Pad by a relative epsilon so that rounding never culls a hit on the boundary.
-  const float pad = surface_epsilon(s->center, s->radius) * 4;
-  args->bounds_o->lower_x = lo.x - pad, args->bounds_o->lower_y = lo.y - pad, args->bounds_o->lower_z = lo.z - pad;
-  args->bounds_o->upper_x = hi.x + pad, args->bounds_o->upper_y = hi.y + pad, args->bounds_o->upper_z = hi.z + pad;
+  // Pad by 2^-16 of the coordinates (hundreds of ulps) so that rounding never culls a hit on the boundary.
+  const float pad = std::max(max_component(abs(s->center)) + s->radius, 0x1p-100f) * 0x1p-16f;
+  args->bounds_o->lower_x = lo.x - pad, args->bounds_o->lower_y = lo.y - pad,
+  args->bounds_o->lower_z = lo.z - pad;
+  args->bounds_o->upper_x = hi.x + pad, args->bounds_o->upper_y = hi.y + pad,
+  args->bounds_o->upper_z = hi.z + pad;
 }
 
 // Nearest t in (tnear, tfar] where the ray meets the shape, or a negative value.
-double hit_distance(const ShapeRecord &s, const double org[3], const double dir[3], double tnear, double tfar) {
+double hit_distance(const ShapeRecord &s, const double org[3], const double dir[3], double tnear,
+                    double tfar) {
   if (s.type == ShapeType::Sphere) {
     // Solve |o + t d - c|^2 = r^2 with the numerically stable form (pbrt-v4 / Ray Tracing Gems ch. 7):
     // discriminant from the perpendicular distance avoids cancellation for large distances.

@@ -8,7 +8,9 @@
 namespace nimbus {
 namespace {
 
-float triangle_area(const Vec3f &a, const Vec3f &b, const Vec3f &c) { return 0.5f * length(cross(b - a, c - a)); }
+float triangle_area(const Vec3f &a, const Vec3f &b, const Vec3f &c) {
+  return 0.5f * length(cross(b - a, c - a));
+}
 
 RTCGeometry make_triangle_geometry(RTCDevice device, const MeshData &mesh) {
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -30,7 +32,9 @@ void set_vec(float out[3], const Vec3f &v) { v.store(out); }
 Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &desc) {
   std::unique_ptr<GeometryScene> gs(new GeometryScene());
   gs->device_ = rtcNewDevice(nullptr);
-  if (!gs->device_) return Error{"cannot create the Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")"};
+  if (!gs->device_)
+    return Error{"cannot create the Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) +
+                 ")"};
   gs->scene_ = rtcNewScene(gs->device_);
   rtcSetSceneFlags(gs->scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(gs->scene_, RTC_BUILD_QUALITY_HIGH);
@@ -56,8 +60,10 @@ Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &d
       rec.mesh = &sd.mesh;
       const auto &p = sd.mesh.positions;
       for (size_t t = 0; t + 2 < sd.mesh.indices.size(); t += 3)
-        rec.area += triangle_area(p[sd.mesh.indices[t]], p[sd.mesh.indices[t + 1]], p[sd.mesh.indices[t + 2]]);
-      for (const Vec3f &q : p) gs->bounds_min_ = min(gs->bounds_min_, q), gs->bounds_max_ = max(gs->bounds_max_, q);
+        rec.area +=
+            triangle_area(p[sd.mesh.indices[t]], p[sd.mesh.indices[t + 1]], p[sd.mesh.indices[t + 2]]);
+      for (const Vec3f &q : p)
+        gs->bounds_min_ = min(gs->bounds_min_, q), gs->bounds_max_ = max(gs->bounds_max_, q);
       gs->shapes_.push_back(rec);
       g = make_triangle_geometry(gs->device_, sd.mesh);
     }
@@ -111,13 +117,14 @@ bool GeometryScene::occluded(const nimbus_ray_t &ray) const {
   return r.tfar < 0;
 }
 
-void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out) const {
+void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit,
+                                nimbus_interaction_t &out) const {
   std::memset(&out, 0, sizeof(out));
   const ShapeRecord &s = shapes_[hit.geom_id];
   const Vec3f org = Vec3f::load(ray.org), dir = Vec3f::load(ray.dir);
   Vec3f p, ng, ns, dpdu, dpdv;
   Vec2f uv;
-  float magnitude = 0;
+  Vec3f error;  // bound on each coordinate's rounding error in p
   switch (s.type) {
     case ShapeType::Sphere: {
       // Re-project the hit onto the sphere: removes the error of o + t d along the ray.
@@ -125,12 +132,12 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       ng = normalize(d);
       p = s.center + ng * s.radius;
       ns = ng;
+      error = (abs(s.center) + abs(ng) * s.radius) * rounding_gamma(5);
       const float phi = std::atan2(ng.y, ng.x), theta = std::acos(clamp(ng.z, -1, 1));
       uv = {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), theta / kPi};
       dpdu = Vec3f{-ng.y, ng.x, 0} * (2 * kPi * s.radius);
       if (length_squared(dpdu) == 0) dpdu = Frame::from_normal(ng).s;
       dpdv = cross(ng, dpdu);
-      magnitude = max_component(abs(s.center)) + s.radius;
       break;
     }
     case ShapeType::Disk: {
@@ -141,7 +148,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       const Vec3f l = f.to_local(p - s.center);
       uv = {0.5f + 0.5f * l.x / s.radius, 0.5f + 0.5f * l.y / s.radius};
       dpdu = f.s, dpdv = f.t;
-      magnitude = max_component(abs(s.center)) + s.radius;
+      error = (abs(p) + abs(s.center)) * rounding_gamma(6);
       break;
     }
     default: {
@@ -152,6 +159,17 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       const float b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
       // Barycentric interpolation is far more accurate than o + t d (pbrt-v4 section 6.8).
       p = p0 * b0 + p1 * b1 + p2 * b2;
+      error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * rounding_gamma(7);
+      // Far from the origin a point within an ulp of an edge can round onto the plane of the neighbouring
+      // face, where a new ray would meet that face at t = 0 from its far side (a leak at box corners).
+      // Nudging the point a few ulps towards the triangle's centroid, within its plane, keeps it strictly
+      // inside its own triangle and off every neighbour's plane.
+      const Vec3f to_centroid = (p0 + p1 + p2) * (1.0f / 3) - p;
+      if (const float dist = length(to_centroid); dist > 0) {
+        const float nudge = std::min(max_component(abs(p)) * 0x1p-21f, 0.5f * dist);
+        p += to_centroid * (nudge / dist);
+        error += abs(p) * rounding_gamma(3);
+      }
       const Vec3f e1 = p1 - p0, e2 = p2 - p0;
       ng = oriented_triangle_normal(m, hit.prim_id, b1, b2);
       Vec2f uv0{0, 0}, uv1{1, 0}, uv2{1, 1};
@@ -171,12 +189,11 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
         const Vec3f n = m.normals[i0] * b0 + m.normals[i1] * b1 + m.normals[i2] * b2;
         if (length_squared(n) > 0) ns = normalize(n);
       }
-      magnitude = std::max({max_component(abs(p0)), max_component(abs(p1)), max_component(abs(p2))});
       break;
     }
   }
   set_vec(out.p, p);
-  out.eps = surface_epsilon(p, magnitude);
+  out.eps = offset_distance(ng, error);
   set_vec(out.ng, ng);
   set_vec(out.ns, ns);
   set_vec(out.dpdu, dpdu);
@@ -185,7 +202,8 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
   out.material = s.material;
   out.light_id = s.light_id;
   out.flags = (dot(dir, ng) < 0 ? NIMBUS_IX_FRONT_FACE : 0u) |
-              (s.light_id != NIMBUS_NONE ? NIMBUS_IX_EMISSIVE : 0u) | (s.two_sided ? NIMBUS_IX_TWO_SIDED : 0u);
+              (s.light_id != NIMBUS_NONE ? NIMBUS_IX_EMISSIVE : 0u) |
+              (s.two_sided ? NIMBUS_IX_TWO_SIDED : 0u);
 }
 
 }  // namespace nimbus

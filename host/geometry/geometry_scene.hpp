@@ -67,17 +67,26 @@ inline Vec3f oriented_triangle_normal(const MeshData &m, uint32_t prim, float b1
   return ng;
 }
 
-// Offset that moves a point at `p` off a surface whose defining coordinates are at most `magnitude`
-// in absolute value: a few hundred float ulps of the largest coordinate involved, so it scales with
-// the scene from 1e-4 to 1e6 units.
-inline float surface_epsilon(const Vec3f &p, float magnitude) {
-  const float m = std::max(max_component(abs(p)), magnitude);
-  return std::max(m * 0x1p-18f, 0x1p-100f);
+// pbrt-v4's gamma(n): the relative error bound of n chained float operations (u = 2^-24).
+constexpr float rounding_gamma(int n) { return float(n) * 0x1p-24f / (1 - float(n) * 0x1p-24f); }
+
+// The distance along ng that takes a point off its surface when each coordinate of the point is off by at
+// most the matching component of `error` (pbrt-v4 section 6.8.6): error is per axis, so a floor at z = 0
+// far out along x gets an offset of a few ulps of z, not of x.
+inline float offset_distance(const Vec3f &ng, const Vec3f &error) {
+  return std::max(dot(abs(ng), error), 0x1p-126f);
 }
 
-// A ray leaving p along dir, its origin pushed by eps along the side of ng that dir points to.
+// A ray leaving p along dir: the origin pushed by eps along the side of ng that dir points to, then each
+// moved coordinate rounded one more ulp away from the surface, so that rounding of the sum can never
+// leave the origin on the surface it leaves.
 inline Vec3f offset_origin(const Vec3f &p, const Vec3f &ng, float eps, const Vec3f &dir) {
-  return p + ng * (dot(ng, dir) >= 0 ? eps : -eps);
+  const Vec3f offset = ng * (dot(ng, dir) >= 0 ? eps : -eps);
+  Vec3f o = p + offset;
+  const auto away = [](float v, float d) {
+    return d > 0 ? std::nextafter(v, kInfinity) : d < 0 ? std::nextafter(v, -kInfinity) : v;
+  };
+  return {away(o.x, offset.x), away(o.y, offset.y), away(o.z, offset.z)};
 }
 
 }  // namespace nimbus

@@ -7,8 +7,13 @@ namespace {
 
 struct SurfacePoint {
   Vec3f p, n;
+  Vec3f error;  // bound on each coordinate's rounding error in p
   float pdf_area = 0;
 };
+
+Vec3f sphere_point_error(const ShapeRecord &s, const Vec3f &n) {
+  return (abs(s.center) + abs(n) * s.radius) * rounding_gamma(5);
+}
 
 SurfacePoint sample_area(const AreaLight &a, const ShapeRecord &s, float u0, float u1) {
   SurfacePoint sp;
@@ -16,12 +21,14 @@ SurfacePoint sample_area(const AreaLight &a, const ShapeRecord &s, float u0, flo
     case ShapeType::Sphere: {
       const Vec3f d = sample_uniform_sphere(u0, u1);
       sp.p = s.center + d * s.radius, sp.n = d;
+      sp.error = sphere_point_error(s, d);
       break;
     }
     case ShapeType::Disk: {
       const Vec2f d = sample_uniform_disk_concentric(u0, u1);
       const Frame f = Frame::from_normal(s.normal);
       sp.p = s.center + (f.s * d.x + f.t * d.y) * s.radius, sp.n = s.normal;
+      sp.error = (abs(s.center) + Vec3f(s.radius)) * rounding_gamma(6);
       break;
     }
     default: {
@@ -32,6 +39,7 @@ SurfacePoint sample_area(const AreaLight &a, const ShapeRecord &s, float u0, flo
       const Vec3f &p0 = m.positions[m.indices[3 * t]], &p1 = m.positions[m.indices[3 * t + 1]],
                   &p2 = m.positions[m.indices[3 * t + 2]];
       sp.p = p0 * (1 - b.x - b.y) + p1 * b.x + p2 * b.y;
+      sp.error = (abs(p0 * (1 - b.x - b.y)) + abs(p1 * b.x) + abs(p2 * b.y)) * rounding_gamma(7);
       sp.n = oriented_triangle_normal(m, uint32_t(t), b.x, b.y);
       break;
     }
@@ -51,7 +59,9 @@ bool outside_sphere(const ShapeRecord &s, const Vec3f &p, float &dist) {
   return s.type == ShapeType::Sphere && dist > s.radius * 1.0001f;
 }
 
-bool emits_towards(const AreaLight &a, const Vec3f &n, const Vec3f &w) { return a.two_sided || dot(n, w) > 0; }
+bool emits_towards(const AreaLight &a, const Vec3f &n, const Vec3f &w) {
+  return a.two_sided || dot(n, w) > 0;
+}
 
 }  // namespace
 
@@ -59,7 +69,7 @@ void area_sample_incident(const AreaLight &a, const GeometryScene &geo, const Ve
                           nimbus_light_incident_t &out) {
   const ShapeRecord &s = geo.shapes()[a.shape];
   out.flags = NIMBUS_LIGHT_AREA;
-  Vec3f lp, ln;
+  Vec3f lp, ln, error;
   float pdf, dc;
   if (outside_sphere(s, p, dc)) {
     // Sample the cone of directions the sphere subtends (pbrt-v4 Sphere::Sample(ctx)).
@@ -74,10 +84,11 @@ void area_sample_incident(const AreaLight &a, const GeometryScene &geo, const Ve
     const float t = b - safe_sqrt(sqr(s.radius) - (dc * dc - b * b));
     ln = normalize(p + w * t - s.center);
     lp = s.center + ln * s.radius;
+    error = sphere_point_error(s, ln);
     pdf = 1 / (2 * kPi * omc);
   } else {
     const SurfacePoint sp = sample_area(a, s, u[0], u[1]);
-    lp = sp.p, ln = sp.n;
+    lp = sp.p, ln = sp.n, error = sp.error;
     const Vec3f d = lp - p;
     const float dist2 = length_squared(d);
     if (!(dist2 > 0)) return;
@@ -91,7 +102,10 @@ void area_sample_incident(const AreaLight &a, const GeometryScene &geo, const Ve
   const Vec3f wi = d / dist;
   wi.store(out.wi);
   out.dist = dist;
-  lp.store(out.p);
+  // The point shadow rays aim at: off the emitter by its rounding error, on the receiver's side, so the
+  // emitter's own surface never occludes its sample however grazing the ray (pbrt-v4's SpawnRayTo
+  // offsets both ends the same way).
+  offset_origin(lp, ln, offset_distance(ln, error), -wi).store(out.p);
   ln.store(out.n);
   out.pdf = pdf;
   if (emits_towards(a, ln, -wi)) a.radiance.store(out.L);

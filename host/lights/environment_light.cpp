@@ -13,9 +13,10 @@ struct LatLong {
 LatLong to_latlong(const Vec3f &dir, float rotate) {
   float phi = std::atan2(dir.y, dir.x) - rotate;
   phi -= 2 * kPi * std::floor(phi / (2 * kPi));
-  const float theta = std::acos(clamp(dir.z, -1, 1));
-  return {std::min(phi / (2 * kPi), 0x1.fffffep-1f), std::min(theta / kPi, 0x1.fffffep-1f),
-          safe_sqrt(1 - dir.z * dir.z)};
+  // sin(theta) from x and y, not sqrt(1 - z^2): near the poles that difference cancels to a few bits,
+  // and the solid-angle pdf divides by it.
+  const float sin_theta = std::hypot(dir.x, dir.y), theta = std::atan2(sin_theta, dir.z);
+  return {std::min(phi / (2 * kPi), 0x1.fffffep-1f), std::min(theta / kPi, 0x1.fffffep-1f), sin_theta};
 }
 
 }  // namespace

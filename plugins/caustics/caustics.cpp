@@ -22,9 +22,9 @@
 namespace nimbus::caustics {
 namespace {
 
-const char *const kRequired[] = {"nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1",
-                                 "nimbus.host.lights@1",      "nimbus.host.film@1",   "nimbus.host.rng@1",
-                                 "nimbus.host.tasks@1",       nullptr};
+const char *const kRequired[] = {
+    "nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1",  "nimbus.host.lights@1",
+    "nimbus.host.film@1",        "nimbus.host.rng@1",    "nimbus.host.tasks@1", nullptr};
 const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix", nullptr};
 
 // Random-number streams: camera samples use nimbus.pt's stream (same numbers, same paths); photon path
@@ -56,7 +56,8 @@ class CausticsSolver final : public sdk::Integrator {
     tasks_ = host().service<nimbus_host_tasks_v1_t>(NIMBUS_SERVICE_TASKS);
     progress_ = host().service<nimbus_host_progress_v1_t>(NIMBUS_SERVICE_PROGRESS);  // optional
     lightmix_ = host().service<nimbus_ext_lightmix_v1_t>(NIMBUS_EXT_LIGHTMIX);       // optional
-    return scene_ && camera_ && bsdf_ && lights_ && film_ && rng_ && tasks_ ? NIMBUS_OK : NIMBUS_E_UNSUPPORTED;
+    return scene_ && camera_ && bsdf_ && lights_ && film_ && rng_ && tasks_ ? NIMBUS_OK
+                                                                            : NIMBUS_E_UNSUPPORTED;
   }
 
   nimbus_status_t prepare(const nimbus_render_setup_t &setup) override {
@@ -108,7 +109,9 @@ class CausticsSolver final : public sdk::Integrator {
 
   nimbus_status_t begin_render(const nimbus_render_info_t &info) override {
     const nimbus_host_t *h = host().get();
-    const auto active = [&](nimbus_element_t e) { return film_->is_active(h, e) ? e : NIMBUS_ELEMENT_INVALID; };
+    const auto active = [&](nimbus_element_t e) {
+      return film_->is_active(h, e) ? e : NIMBUS_ELEMENT_INVALID;
+    };
     ids_.direct = active(registered_.direct);
     ids_.indirect = active(registered_.indirect);
     ids_.emission = active(registered_.emission);
@@ -210,8 +213,8 @@ class CausticsSolver final : public sdk::Integrator {
       progress_->stat_add(h, "caustics_photon_passes", double(stats_.passes));
       progress_->stat_add(h, "caustics_map_iterations", double(stats_.map_iterations));
       progress_->stat_add(h, "caustics_photon_seconds", stats_.photon_seconds);
-      const double bytes = stats_.photons > 0 ? double(stats_.photon_bytes) / double(stats_.photons)
-                                              : double(sizeof(Photon));
+      const double bytes =
+          stats_.photons > 0 ? double(stats_.photon_bytes) / double(stats_.photons) : double(sizeof(Photon));
       progress_->stat_add(h, "caustics_bytes_per_photon", bytes);
     }
     map_photons_.clear();
@@ -285,7 +288,8 @@ class CausticsSolver final : public sdk::Integrator {
       }
     };
     if (progress_) progress_->report(h, 0, paths, "photons");
-    if (nimbus_status_t s = tasks_->parallel_for(h, paths, kPhotonPathsPerTask, fn, &job); s != NIMBUS_OK) return s;
+    if (nimbus_status_t s = tasks_->parallel_for(h, paths, kPhotonPathsPerTask, fn, &job); s != NIMBUS_OK)
+      return s;
     // Concatenate in task order: photon indices never depend on threads.
     size_t total = 0;
     uint64_t done = 0;
@@ -359,7 +363,7 @@ class CausticsSolver final : public sdk::Integrator {
     nimbus_ray_t ray;
     org.store(ray.org);
     dir0.store(ray.dir);
-    ray.tnear = (es.flags & NIMBUS_LIGHT_AREA) ? 1e-4f * std::max(1.0f, max_component(abs(org))) : 0;
+    ray.tnear = (es.flags & NIMBUS_LIGHT_AREA) ? relative_offset(org) : 0;
     ray.tfar = kInfinity;
     ray.mask = ~0u, ray.flags = 0;
 
@@ -478,9 +482,9 @@ class CausticsSolver final : public sdk::Integrator {
   // Camera-side MIS state of one path (only with an active photon map).
   struct CameraState {
     CameraMis mis;
-    float a_r = 0;      // mis(pi r^2), 0 until the first rough vertex fixes r
+    float a_r = 0;  // mis(pi r^2), 0 until the first rough vertex fixes r
     float radius = 0;
-    float length = 0;   // path length from the lens to the current vertex
+    float length = 0;  // path length from the lens to the current vertex
   };
 
   // nimbus.pt's camera path. With Map, the same path (same random numbers) also carries the MIS state,
@@ -540,16 +544,16 @@ class CausticsSolver final : public sdk::Integrator {
           if constexpr (!Map) {
             float w = 1;
             if (!specular) {
-              const float light_pdf = sampler_iface_->pmf(sampler_, &prev, l) *
-                                      lights_->pdf_incident(h, l, &prev, ray.dir, &ix);
+              const float light_pdf =
+                  sampler_iface_->pmf(sampler_, &prev, l) * lights_->pdf_incident(h, l, &prev, ray.dir, &ix);
               w = power_heuristic(prev_pdf, light_pdf);
             }
             rec.add(beta * Le * w, light_group_[l], segments, ids_);
           } else {
             float nee_ratio = 0;
             if (!specular) {
-              const float light_pdf = sampler_iface_->pmf(sampler_, &prev, l) *
-                                      lights_->pdf_incident(h, l, &prev, ray.dir, &ix);
+              const float light_pdf =
+                  sampler_iface_->pmf(sampler_, &prev, l) * lights_->pdf_incident(h, l, &prev, ray.dir, &ix);
               nee_ratio = mis(light_pdf / prev_pdf);
             }
             const float lp = emitters_.lp(l, Vec3f::load(ix.ng), wo, Vec3f::load(prev.p));
@@ -690,15 +694,16 @@ class CausticsSolver final : public sdk::Integrator {
       float nk = pmf;  // delta lights
       if (!delta) nk = infinite ? light_pdf : light_pdf * std::abs(dot(Vec3f::load(ls.n), wi)) / d2;
       (void)em;
-      const float w = nee_weight(hit_ratio, cam.a_r, bsdf_pdf_rev, cam.mis.s_cam(segments), lp, cos_j / d2, nk);
+      const float w =
+          nee_weight(hit_ratio, cam.a_r, bsdf_pdf_rev, cam.mis.s_cam(segments), lp, cos_j / d2, nk);
       rec.add(beta * contrib * Li * (w / light_pdf), light_group_[light], segments, ids_,
               lp > 0 && cam.mis.eligible(segments));
     }
   }
 
   // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel, MIS-weighted merges.
-  __attribute__((noinline)) void merge(const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta, const CameraState &cam,
-             uint32_t s, SampleRecord &rec) const {
+  __attribute__((noinline)) void merge(const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta,
+                                       const CameraState &cam, uint32_t s, SampleRecord &rec) const {
     const nimbus_host_t *h = host().get();
     const float r = cam.radius, r2 = r * r;
     const float neff = float(map_paths_);
@@ -722,8 +727,8 @@ class CausticsSolver final : public sdk::Integrator {
       bsdf_->eval(h, &ix, wo_arr, wp_arr, NIMBUS_MODE_RADIANCE, f, &pdf_fwd, &pdf_rev);
       const Rgb fr = Rgb::load(f);
       if (is_black(fr)) return;
-      const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, a_r_neff, m_neff,
-                                   m_neff, first_rough, cam.mis.gamma_sum(k));
+      const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, a_r_neff,
+                                   m_neff, m_neff, first_rough, cam.mis.gamma_sum(k));
       const float kernel = kernel_norm * (1 - d2 / r2);
       const Rgb c = fr * Rgb::load(ph.power) * (w * kernel);
       if (!is_finite(c) || is_black(c)) return;
@@ -775,7 +780,7 @@ class CausticsSolver final : public sdk::Integrator {
   bool map_active_ = false;
   bool photons_saw_sharp_ = false;
   std::vector<float> useful_merge_, useful_total_;  // per pixel: accumulated lum of merges (Mp), beauty (Tp)
-  sdk::PerWorker<uint64_t> region_pixels_;  // pixels rendered this iteration (per worker)
+  sdk::PerWorker<uint64_t> region_pixels_;          // pixels rendered this iteration (per worker)
   struct Stats {
     uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
     double photon_seconds = 0;  // photon tracing and kd-tree builds

@@ -13,9 +13,9 @@
 namespace nimbus::lt {
 namespace {
 
-const char *const kRequired[] = {"nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1",
-                                 "nimbus.host.lights@1",      "nimbus.host.film@1",   "nimbus.host.rng@1",
-                                 "nimbus.host.tasks@1",       nullptr};
+const char *const kRequired[] = {
+    "nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1",  "nimbus.host.lights@1",
+    "nimbus.host.film@1",        "nimbus.host.rng@1",    "nimbus.host.tasks@1", nullptr};
 const char *const kFeatures[] = {"progressive", "lightmix", nullptr};
 
 constexpr uint64_t kStreamLightPath = 1;  // distinct from the camera streams of other integrators
@@ -23,8 +23,8 @@ constexpr uint64_t kPathsPerTask = 1024;
 
 class LightTracer final : public sdk::Integrator {
  public:
-  NIMBUS_DESCRIPTOR("nimbus.lt", "Light tracer (reference for caustics)", "Nimbus", NIMBUS_KIND_INTEGRATOR, 1, 0,
-                    0, kFeatures, kRequired)
+  NIMBUS_DESCRIPTOR("nimbus.lt", "Light tracer (reference for caustics)", "Nimbus", NIMBUS_KIND_INTEGRATOR, 1,
+                    0, 0, kFeatures, kRequired)
 
   nimbus_status_t init() override {
     scene_ = host().service<nimbus_host_scene_query_v1_t>(NIMBUS_SERVICE_SCENE_QUERY);
@@ -76,7 +76,9 @@ class LightTracer final : public sdk::Integrator {
     return tasks_->parallel_for(host().get(), paths_, kPathsPerTask, fn, this);
   }
 
-  nimbus_status_t render_tile(const nimbus_thread_ctx_t &, const nimbus_tile_t &) override { return NIMBUS_OK; }
+  nimbus_status_t render_tile(const nimbus_thread_ctx_t &, const nimbus_tile_t &) override {
+    return NIMBUS_OK;
+  }
 
  private:
   static float next(nimbus_rng_t &r) { return nimbus_rng_next_float(&r); }
@@ -135,8 +137,8 @@ class LightTracer final : public sdk::Integrator {
       // whichever side this photon happened to leave from.
       const float cos_l = (em.flags & NIMBUS_LIGHT_TWO_SIDED) ? std::abs(dot(n, to_cam)) : dot(n, to_cam);
       if (we > 0 && cos_l > 0) {
-        // Offset the origin off the emitter along its normal.
-        const Vec3f o = org + n * (1e-4f * std::max(1.0f, max_component(abs(org))));
+        // Offset the origin off the emitter, on the camera's side.
+        const Vec3f o = org + n * (dot(n, to_cam) >= 0 ? relative_offset(org) : -relative_offset(org));
         if (camera_visible(ctx, nullptr, o, lens))
           splat(ctx, raster, Le * (cos_l * we * inv_paths / (pmf * em.pdf_pos)), light);
       }
@@ -145,10 +147,11 @@ class LightTracer final : public sdk::Integrator {
     const bool delta_pos = em.flags & NIMBUS_LIGHT_DELTA_POSITION;
     const float cos_e = delta_pos || (em.flags & NIMBUS_LIGHT_INFINITE) ? 1.0f : std::abs(dot(n, dir));
     Rgb beta = Le * (cos_e / (pmf * em.pdf_pos * em.pdf_dir));
+    const float beta_emitted = max_component(beta);
     nimbus_ray_t ray;
     org.store(ray.org);
     dir.store(ray.dir);
-    ray.tnear = (em.flags & NIMBUS_LIGHT_AREA) ? 1e-4f * std::max(1.0f, max_component(abs(org))) : 0;
+    ray.tnear = (em.flags & NIMBUS_LIGHT_AREA) ? relative_offset(org) : 0;
     ray.tfar = kInfinity;
     ray.mask = ~0u, ray.flags = 0;
 
@@ -188,8 +191,10 @@ class LightTracer final : public sdk::Integrator {
       const Vec3f wi = Vec3f::load(bs.wi);
       beta *= Rgb::load(bs.f) * (std::abs(dot(wi, ns)) / bs.pdf);
       if (is_black(beta) || !is_finite(beta)) return;
-      if (i >= 3) {  // Russian roulette, as in the path tracer
-        const float q = std::max(0.0f, 1 - max_component(beta));
+      if (i >= 3) {
+        // Russian roulette on the throughput since emission (as the path tracer's, which starts at 1):
+        // beta itself carries the emitted power, whose units scale with the scene (area, distance^2).
+        const float q = std::max(0.0f, 1 - max_component(beta / beta_emitted));
         if (next(rng) < q) return;
         beta /= 1 - q;
       }

@@ -78,18 +78,17 @@ INSTANTIATE_TEST_SUITE_P(Extremes, Leak, ::testing::Values(1e-4, 1.0, 1e3, 1e6),
 // Far from the origin a float keeps only 16 (at 1e3) to 7 (at 1e5) fraction bits; every gap in the scene
 // is still at least 13 ulps there (the panel is 0.5 units off, the spheres 0.1 and 0.2, the point light
 // 0.2 above the lid), which robust offsetting must resolve.
-// KNOWN BUG (issue 4 note): leaks far from the origin, see ray_leak_test.cpp. Disabled until fixed.
-TEST(Leak, DISABLED_SealedBoxFarFromOriginIsBlackInside) {
+// Found F1/F2 (tests/extremes/README.md).
+TEST(Leak, SealedBoxFarFromOriginIsBlackInside) {
   SceneRenderer r;
   for (double offset : {1e3, 1e5})
     expect_black(render(r, sealed_box(1, offset, 0.5), pt(32, 3)), "offset " + num(offset));
 }
 
 // The smallest repro of one far-from-origin leak: an empty closed box and one point light 0.2 above its
-// lid. Shadow rays from inside must stop at the lid; spawn_ray_to ends them 4 * surface_epsilon(light)
-// before the light - 0.46 units at 3e4 - so they stop short of the lid and the light shines in.
-// KNOWN BUG (issue 4 note): leaks far from the origin. Disabled until fixed.
-TEST(Leak, DISABLED_PointLightAboveTheLidFarFromOrigin) {
+// lid. Shadow rays from inside must stop at the lid; they once ended 4 * 2^-18 of the light's coordinates
+// before it - 0.46 units at 3e4 - short of the lid, and the light shone in (F3 in README.md).
+TEST(Leak, PointLightAboveTheLidFarFromOrigin) {
   SceneRenderer r;
   for (double offset : {1e4, 3e4, 1e5}) {
     const std::string o = num(offset);

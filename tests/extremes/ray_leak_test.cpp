@@ -6,12 +6,10 @@
 // t = 0, or an origin pushed through a wall. Hundreds of thousands of bounces cost well under a second,
 // far more than a render can afford, and the escape count is exact - no noise.
 //
-// Far from the origin these walks DO escape (found by this test, see the report in
-// tests/extremes/README.md): an interpolated hit point on one wall snaps onto the plane of the adjacent
-// wall at their shared edge, the next ray starts on that plane (offset_origin moves it along the first
-// wall's normal only) and Embree reports the adjacent wall at t = 0, seen from its outside; the
-// integrator then scatters to the outside. And at 1e5 the offset itself (surface_epsilon = 2^-18 of the
-// coordinates, 0.38 units there) pushes origins on a sphere 0.1 above the floor through the floor.
+// Far from the origin these walks once escaped (F1 and F2 in tests/extremes/README.md): a hit point on
+// one wall snapped onto the plane of the adjacent wall at their shared edge and Embree reported that wall
+// at t = 0, seen from its outside; and a 2^-18 relative offset pushed origins on a sphere 0.1 above the
+// floor through the floor at 1e5.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -137,12 +135,10 @@ INSTANTIATE_TEST_SUITE_P(Extremes, RayLeak,
                            return n;
                          });
 
-// KNOWN BUG (open, noted on issue 4): a unit box 1e3..1e5 units from the origin leaks rays at its edges:
-// a hit point next to an edge rounds onto the adjacent wall's plane, the next ray (offset along the first
-// wall's normal only, tnear = 0) hits that wall at t = 0 from its outside side and scatters out (F1 in
-// README.md); with the sphere, the 2^-18 surface_epsilon also pushes origins through the floor (F2).
-// Disabled until the offsetting is fixed; run with --gtest_also_run_disabled_tests to reproduce.
-INSTANTIATE_TEST_SUITE_P(DISABLED_FarFromOrigin, RayLeak,
+// A unit box 1e3..1e5 units from the origin once leaked rays at its edges: a hit point next to an edge
+// rounded onto the adjacent wall's plane and the next ray met that wall at t = 0 from its outside (F1 in
+// README.md); with the sphere, a 2^-18 relative offset also pushed origins through the floor (F2).
+INSTANTIATE_TEST_SUITE_P(FarFromOrigin, RayLeak,
                          ::testing::Values(Placement{1, 1e3, 0}, Placement{1, 1e4, 0}, Placement{1, 1e5, 0},
                                            Placement{1, 1e5, 0.1}),
                          [](const auto &info) {

@@ -96,9 +96,8 @@ INSTANTIATE_TEST_SUITE_P(Extremes, ScaleFactor, ::testing::Values(1e-4, 1e-2, 1e
 // The light tracer spawns its rays with its own offsets; it must be as scale-invariant as the path tracer.
 // Compared with itself at unit scale (same seed), since light tracing cannot see the glass sphere's
 // specular paths the way path tracing does.
-// KNOWN BUG (issue 4 note): nimbus.lt offsets ray origins by absolute amounts (plugins/lighttracer),
-// wrong at small scales. Disabled until it uses the interaction's eps.
-TEST(ScaleLightTracer, DISABLED_ImageMatchesUnitScale) {
+// It found F4 (README.md): absolute emitter offsets and Russian roulette on the absolute photon power.
+TEST(ScaleLightTracer, ImageMatchesUnitScale) {
   SceneRenderer r;
   RenderRequest req = pt(16, 1);
   req.integrator = "nimbus.lt";

@@ -36,7 +36,8 @@ typedef struct nimbus_light_info {
 typedef struct nimbus_light_incident {
   float wi[3];    /* unit direction from the receiver towards the light */
   float dist;     /* distance to the light point (INFINITY for infinite lights) */
-  float p[3];     /* light point (for spawn_ray_to); for infinite lights a point far away */
+  float p[3];     /* light point for spawn_ray_to: area lights offset it off the emitter on the receiver's
+                   * side by its rounding error (dist is to the surface); infinite lights: a point far away */
   float n[3];     /* light surface normal at p (zero for point and infinite lights) */
   float L[3];     /* incident radiance (area, infinite) or intensity / dist^2 (delta lights) */
   float pdf;      /* solid-angle pdf of wi (1 for delta lights); 0 = no sample */
