@@ -217,15 +217,23 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   }
   const double previous_seconds = checkpoint.seconds;
 
-  const uint64_t iterations = options.iterations   ? *options.iterations
-                              : desc->render.iterations ? desc->render.iterations
-                              : (options.time_seconds || desc->render.time_seconds > 0 || options.target_error) ? 0
-                                                                                         : kDefaultIterations;
-  const double budget = options.time_seconds ? *options.time_seconds : desc->render.time_seconds;
-  const double target_error = options.target_error ? *options.target_error : 0.0;
+  // The command line's stop conditions replace the scene's: `--time 60` on a scene that says
+  // `iterations: 64` renders for 60 seconds, not until whichever comes first. Within one source, the
+  // conditions combine (the first reached stops); a time budget or an error target alone means no
+  // iteration limit.
+  const bool cli_stops = options.iterations || options.time_seconds || options.target_error;
+  const RenderDesc &scene_stops = desc->render;
+  const uint64_t iterations =
+      cli_stops ? options.iterations.value_or(0)
+      : scene_stops.iterations ? scene_stops.iterations
+      : (scene_stops.time_seconds > 0 || scene_stops.target_error > 0) ? 0
+                                                                        : kDefaultIterations;
+  const double budget = cli_stops ? options.time_seconds.value_or(0) : scene_stops.time_seconds;
+  const double target_error = cli_stops ? options.target_error.value_or(0) : scene_stops.target_error;
   if (target_error > 0) {
     if (film.iterations() > 0)
-      return Error{"--target-error cannot resume a checkpoint (the odd/even halves were not saved)"};
+      return Error{"an error target (--target-error or render.target_error) cannot resume a checkpoint "
+                   "(the odd/even halves were not saved)"};
     ctx.error_estimate = std::make_unique<ErrorEstimate>(desc->render.width, desc->render.height, ctx.worker_count);
   }
   double estimated_error = -1;

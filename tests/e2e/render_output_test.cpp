@@ -77,3 +77,25 @@ TEST(RenderOutput, QuietRenderPrintsNothing) {
 
 }  // namespace
 }  // namespace nimbus::e2e
+
+namespace nimbus::e2e {
+namespace {
+
+// The command line's stopping rules replace the scene's: `--time` on a scene that says `iterations: 4`
+// renders until the time is up (more than 4 iterations of this tiny scene in 1.5 s on any machine that
+// runs the suite), not until whichever comes first.
+TEST(RenderOutput, CommandLineTimeReplacesTheScenesIterations) {
+  TestDir dir;
+  const std::string exr = dir.file("t.exr");
+  const ProcessResult r = run_nimbus({"render", scene("box.yaml"), "-o", exr, "--time", "1.5", "-q"}, dir);
+  ASSERT_TRUE(exited_with(r, 0)) << r.describe();
+  const auto img = read_exr(exr);
+  ASSERT_TRUE(img);
+  EXPECT_EQ(meta_string(*img, "nimbus:stopped_by"), std::optional<std::string>("time"));
+  const std::optional<double> iterations = meta_number(*img, "nimbus:iterations");
+  ASSERT_TRUE(iterations);
+  EXPECT_GT(*iterations, 4);
+}
+
+}  // namespace
+}  // namespace nimbus::e2e

@@ -52,7 +52,7 @@ class SceneRenderer {
     if (!r.integrator.empty()) d.render.integrator = r.integrator;
     for (const auto &[k, v] : r.options) d.render.options[k] = v;
     RenderOptions opt;
-    opt.iterations = r.iterations;
+    if (r.iterations) opt.iterations = r.iterations;  // 0: the scene decides
     opt.seed = r.seed;
     opt.threads = r.threads;
     opt.elements = r.elements;

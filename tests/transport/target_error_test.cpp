@@ -43,6 +43,18 @@ TEST(TargetError, AchievedErrorIsWithinFactorTwoOfTarget) {
   }
 }
 
+// The scene's render.target_error does what --target-error does (with no iteration limit of its own).
+TEST(TargetError, SceneKeyStopsAtTheTarget) {
+  SceneRenderer r;
+  std::string scene = kScene;
+  scene.replace(scene.find("seed: 3"), 7, "seed: 3, target_error: 0.02");
+  RenderRequest req{"nimbus.pt", 0, 7};
+  const auto img = r.render(scene, req);
+  ASSERT_EQ(img.strings.at("nimbus:stopped_by"), "target_error");
+  EXPECT_LT(img.numbers.at("nimbus:estimated_relmse"), 0.02);
+  EXPECT_DOUBLE_EQ(img.numbers.at("nimbus:target_error"), 0.02);
+}
+
 TEST(TargetError, NoHalfBuffersWithoutATarget) {
   SceneRenderer r;
   const auto img = r.render(kScene, {"nimbus.pt", 4, 7});
