@@ -76,6 +76,8 @@ def main():
                     render(args.nimbus, scene, integ, t, s + 1, out)
                     errs.append(compare(args.nimbus, out, ref)["relmse"])
                     os.remove(out)
+                    if os.path.exists(out + ".ckpt"):
+                        os.remove(out + ".ckpt")
                     png = os.path.splitext(out)[0] + ".png"
                     if os.path.exists(png):
                         os.remove(png)

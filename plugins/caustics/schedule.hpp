@@ -24,23 +24,25 @@ inline float merge_radius(float theta_pix, float ell, uint32_t j, float scene_ra
 
 struct ScheduleConfig {
   uint64_t n_max = uint64_t(1) << 22;  // photon paths per pass at u = 1 (spec 5)
-  // Cap on a map's size in camera passes' worth of paths (0: none): N_max = min(2^22, 2 N_cam). A map
-  // of N >= N_cam paths serves k = N / N_cam camera passes, and every camera pass evaluates each stored
-  // photon in ~pi 1.5^2 lookups (one host BSDF call each): lookup work per iteration grows with the map,
-  // while reusing a map k times does not lower the photon noise of the final image (that depends on
-  // the photon paths traced per iteration, N / k). On 2 cores and 0.25 MPix images the uncapped 2^22
-  // (up to 18 camera passes per map) more than doubled render time on the pool and ring scenes; with
-  // the cap, photon paths per iteration still reach 2 u N_cam for u < 1/2 and N_cam above. Metropolis
-  // guiding (next issue) wants large batches: revisit the cap with it (and with a batched BSDF eval).
+  // Cap on photon paths per pass relative to the camera paths of one iteration (0: none):
+  // N_max = min(2^22, ratio N_cam). Every camera pass evaluates each stored photon in ~pi 1.5^2 lookups
+  // (one host BSDF call each) and one photon path costs about 0.7 camera paths, so photon work per
+  // iteration scales with this ratio. Measured on 2 cores at 640x360 (docs/performance.md): ratio 2 cost
+  // +122 % per iteration on the pool scene (u = 0.6) and +70 % on the ring; the uncapped 2^22 more than
+  // doubled render time. With 0.5 the photon work stays near a third of the camera work even when every
+  // pixel is useful; noise at equal time is what matters, and more iterations per second make up for
+  // smaller maps. Metropolis guiding (next issue) wants large batches: revisit the cap with it.
   // The probe (2^16 paths) is not capped, so small images still interleave several camera passes per
   // photon pass.
-  uint64_t max_passes_per_map = 2;
+  double photon_paths_per_camera_path = 0.5;
   uint64_t probe = uint64_t(1) << 16;  // the first pass
   uint64_t min_floor = 4096;           // N_min never below this
   uint64_t camera_paths = 1;           // camera paths per iteration (the render region's pixels)
 
   uint64_t effective_max() const {
-    return max_passes_per_map ? std::min(n_max, std::max<uint64_t>(1, max_passes_per_map * camera_paths)) : n_max;
+    if (!(photon_paths_per_camera_path > 0)) return n_max;
+    const double cap = std::round(photon_paths_per_camera_path * double(camera_paths));
+    return std::min(n_max, std::max<uint64_t>(1, uint64_t(cap)));
   }
   uint64_t effective_min() const { return std::min(effective_max(), std::max(min_floor, effective_max() / 64)); }
 };

@@ -29,26 +29,28 @@ TEST(CausticsSchedule, RadiusStartsAtOneAndAHalfPixelsAndShrinks) {
 ScheduleConfig config(uint64_t camera_paths) {
   ScheduleConfig c;
   c.n_max = 1 << 20;
-  c.max_passes_per_map = 0;  // no cap: N_min = N_max / 64
+  c.photon_paths_per_camera_path = 0;  // no cap: N_min = N_max / 64
   c.probe = 1 << 16;
   c.camera_paths = camera_paths;
   return c;
 }
 
-// The cap: a map holds at most two camera passes' worth of photon paths (default); N_min = N_max / 64
+// The cap: a pass holds at most half a camera pass's worth of photon paths (default); N_min = N_max / 64
 // (floored at 4096).
 TEST(CausticsSchedule, MapSizeCappedByCameraPasses) {
   ScheduleConfig c;
   c.n_max = 1 << 22;
   c.camera_paths = 1280 * 720;
-  EXPECT_EQ(c.effective_max(), 2u * 1280 * 720);
-  EXPECT_EQ(c.effective_min(), 2u * 1280 * 720 / 64);
-  c.camera_paths = 4000 * 3000;
+  EXPECT_EQ(c.effective_max(), 1280u * 720 / 2);
+  EXPECT_EQ(c.effective_min(), 1280u * 720 / 2 / 64);
+  c.camera_paths = 640 * 360;
+  EXPECT_EQ(c.effective_min(), 4096u);  // the floor
+  c.camera_paths = 10000 * 10000;
   EXPECT_EQ(c.effective_max(), 1u << 22);
-  c.max_passes_per_map = 4;
+  c.photon_paths_per_camera_path = 4;
   c.camera_paths = 640 * 360;
   EXPECT_EQ(c.effective_max(), 4u * 640 * 360);
-  c.max_passes_per_map = 1;
+  c.photon_paths_per_camera_path = 1;
   c.camera_paths = 80 * 45;
   EXPECT_EQ(c.effective_max(), 80u * 45);
   EXPECT_EQ(c.effective_min(), 80u * 45);
