@@ -36,15 +36,15 @@ ScheduleConfig config(uint64_t camera_paths) {
 }
 
 // The cap: a pass holds at most half a camera pass's worth of photon paths (default); N_min = N_max / 64
-// (floored at 4096).
+// (floored at 16384).
 TEST(CausticsSchedule, MapSizeCappedByCameraPasses) {
   ScheduleConfig c;
   c.n_max = 1 << 22;
   c.camera_paths = 1280 * 720;
   EXPECT_EQ(c.effective_max(), 1280u * 720 / 2);
-  EXPECT_EQ(c.effective_min(), 1280u * 720 / 2 / 64);
-  c.camera_paths = 640 * 360;
-  EXPECT_EQ(c.effective_min(), 4096u);  // the floor
+  EXPECT_EQ(c.effective_min(), 16384u);  // the floor: 1280 * 720 / 2 / 64 is below it
+  c.camera_paths = 4096 * 4096;
+  EXPECT_EQ(c.effective_min(), (1u << 22) / 64);
   c.camera_paths = 10000 * 10000;
   EXPECT_EQ(c.effective_max(), 1u << 22);
   c.photon_paths_per_camera_path = 4;
