@@ -72,7 +72,8 @@ void BM_EmbreeClosestHitDefaultScene(benchmark::State &state) {
   std::mt19937 rng(1);
   std::uniform_real_distribution<float> U(0, 1);
   for (RTCRayHit &rh : batch) {
-    const Vec3f o = lo + (hi - lo) * Vec3f(0.05f + 0.9f * U(rng), 0.05f + 0.9f * U(rng), 0.05f + 0.9f * U(rng));
+    const Vec3f o =
+        lo + (hi - lo) * Vec3f(0.05f + 0.9f * U(rng), 0.05f + 0.9f * U(rng), 0.05f + 0.9f * U(rng));
     const Vec3f d = sample_uniform_sphere(U(rng), U(rng));
     rh.ray = {o.x, o.y, o.z, 0, d.x, d.y, d.z, 0, kInfinity, 0xFFFFFFFFu, 0, 0};
   }
@@ -96,7 +97,8 @@ void BM_EmbreeClosestHitDefaultScene(benchmark::State &state) {
     hits += h.load();
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(kRays));
-  state.counters["rays_per_s"] = benchmark::Counter(double(state.iterations()) * kRays, benchmark::Counter::kIsRate);
+  state.counters["rays_per_s"] =
+      benchmark::Counter(double(state.iterations()) * kRays, benchmark::Counter::kIsRate);
   state.counters["hit_fraction"] = double(hits) / (double(state.iterations()) * kRays);
 }
 BENCHMARK(BM_EmbreeClosestHitDefaultScene)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -73,12 +73,15 @@ int32_t is_main_thread(const nimbus_host_t *host) {
   return std::this_thread::get_id() == context_of(host).main_thread ? 1 : 0;
 }
 
-int32_t is_render_thread(const nimbus_host_t *) { return tbb::this_task_arena::current_thread_index() >= 0 ? 1 : 0; }
+int32_t is_render_thread(const nimbus_host_t *) {
+  return tbb::this_task_arena::current_thread_index() >= 0 ? 1 : 0;
+}
 
 }  // namespace
 
 const nimbus_host_rng_v1_t kRngV1 = {sizeof(nimbus_host_rng_v1_t), derive};
-const nimbus_host_progress_v1_t kProgressV1 = {sizeof(nimbus_host_progress_v1_t), report, cancelled, stat_add};
+const nimbus_host_progress_v1_t kProgressV1 = {sizeof(nimbus_host_progress_v1_t), report, cancelled,
+                                               stat_add};
 const nimbus_host_tasks_v1_t kTasksV1 = {sizeof(nimbus_host_tasks_v1_t), 0, parallel_for, tasks_worker_count};
 const nimbus_host_memory_v1_t kMemoryV1 = {sizeof(nimbus_host_memory_v1_t), mem_alloc, mem_free};
 const nimbus_host_thread_check_v1_t kThreadCheckV1 = {sizeof(nimbus_host_thread_check_v1_t), is_main_thread,

@@ -5,7 +5,8 @@
 namespace nimbus {
 namespace {
 
-nimbus_element_t register_element(const nimbus_host_t *host, const char *name, uint32_t channels, uint32_t flags) {
+nimbus_element_t register_element(const nimbus_host_t *host, const char *name, uint32_t channels,
+                                  uint32_t flags) {
   if (!name) return NIMBUS_ELEMENT_INVALID;
   return context_of(host).film->register_element(name, channels, flags);
 }
@@ -35,7 +36,9 @@ void splat(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, nimbus_elem
   if (Film *half = half_film(ctx, el)) half->splat(tc->worker_index, el, fx, fy, value);
 }
 
-int32_t lightmix_is_active(const nimbus_host_t *host) { return context_of(host).lightmix_elements.empty() ? 0 : 1; }
+int32_t lightmix_is_active(const nimbus_host_t *host) {
+  return context_of(host).lightmix_elements.empty() ? 0 : 1;
+}
 
 uint32_t lightmix_group_count(const nimbus_host_t *host) {
   return uint32_t(context_of(host).lights.group_names().size());
@@ -47,8 +50,8 @@ void lightmix_accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *,
   if (group < ctx.lightmix_elements.size()) ctx.film->accumulate(ctx.lightmix_elements[group], x, y, value);
 }
 
-void lightmix_splat(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, uint32_t group, float fx, float fy,
-                    const float value[3]) {
+void lightmix_splat(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, uint32_t group, float fx,
+                    float fy, const float value[3]) {
   const RenderContext &ctx = context_of(host);
   if (group < ctx.lightmix_elements.size())
     ctx.film->splat(tc->worker_index, ctx.lightmix_elements[group], fx, fy, value);

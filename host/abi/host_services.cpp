@@ -13,7 +13,8 @@ const void *get_service(const nimbus_host_t *, const char *id, uint32_t rev) {
   return HostServices::find_service(id, rev);
 }
 
-void log_message(const nimbus_host_t *host, nimbus_log_level_t level, const char *plugin_id, const char *msg) {
+void log_message(const nimbus_host_t *host, nimbus_log_level_t level, const char *plugin_id,
+                 const char *msg) {
   RenderContext *ctx = static_cast<HostServices *>(host->host_data)->context();
   const std::string id = plugin_id ? plugin_id : "";
   const std::string text = msg ? msg : "";

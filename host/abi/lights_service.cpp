@@ -22,8 +22,8 @@ nimbus_status_t info(const nimbus_host_t *host, uint32_t light, nimbus_light_inf
   return NIMBUS_OK;
 }
 
-void sample_incident(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ix, const float u[2],
-                     nimbus_light_incident_t *out) {
+void sample_incident(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ix,
+                     const float u[2], nimbus_light_incident_t *out) {
   const RenderContext &ctx = context_of(host);
   if (light >= ctx.lights.count()) {
     std::memset(out, 0, sizeof(*out));
@@ -32,14 +32,15 @@ void sample_incident(const nimbus_host_t *host, uint32_t light, const nimbus_int
   light_sample_incident(ctx.lights[light], ctx.lights.scene(), *ix, u, *out);
 }
 
-float pdf_incident(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ref, const float wi[3],
-                   const nimbus_interaction_t *on_light) {
+float pdf_incident(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ref,
+                   const float wi[3], const nimbus_interaction_t *on_light) {
   const RenderContext &ctx = context_of(host);
   if (light >= ctx.lights.count()) return 0;
   return light_pdf_incident(ctx.lights[light], ctx.lights.scene(), *ref, Vec3f::load(wi), on_light);
 }
 
-void eval_emitted(const nimbus_host_t *host, const nimbus_interaction_t *on_light, const float wo[3], float L[3]) {
+void eval_emitted(const nimbus_host_t *host, const nimbus_interaction_t *on_light, const float wo[3],
+                  float L[3]) {
   const RenderContext &ctx = context_of(host);
   if (on_light->light_id >= ctx.lights.count()) {
     Rgb(0).store(L);
@@ -53,7 +54,8 @@ void eval_infinite(const nimbus_host_t *host, uint32_t light, const float dir[3]
   (light < ctx.lights.count() ? light_eval_infinite(ctx.lights[light], Vec3f::load(dir)) : Rgb(0)).store(L);
 }
 
-void sample_emission(const nimbus_host_t *host, uint32_t light, const float u[4], nimbus_light_emission_t *out) {
+void sample_emission(const nimbus_host_t *host, uint32_t light, const float u[4],
+                     nimbus_light_emission_t *out) {
   const RenderContext &ctx = context_of(host);
   if (light >= ctx.lights.count()) {
     std::memset(out, 0, sizeof(*out));
@@ -64,8 +66,13 @@ void sample_emission(const nimbus_host_t *host, uint32_t light, const float u[4]
 
 }  // namespace
 
-const nimbus_host_lights_v1_t kLightsV1 = {sizeof(nimbus_host_lights_v1_t), count,        info,
-                                           sample_incident,                  pdf_incident, eval_emitted,
-                                           eval_infinite,                    sample_emission};
+const nimbus_host_lights_v1_t kLightsV1 = {sizeof(nimbus_host_lights_v1_t),
+                                           count,
+                                           info,
+                                           sample_incident,
+                                           pdf_incident,
+                                           eval_emitted,
+                                           eval_infinite,
+                                           sample_emission};
 
 }  // namespace nimbus

@@ -41,8 +41,8 @@ void ProgressDisplay::update(const RenderProgress &p) {
     const int filled = int(f * kWidth);
     std::string bar(filled, '#');
     bar.resize(kWidth, '-');
-    std::fprintf(out_, "\r[%s] %3d%%  it %s  %s  ETA %s  %s\033[K", bar.c_str(), int(f * 100), its.c_str(), rate,
-                 format_duration(eta).c_str(), p.phase.c_str());
+    std::fprintf(out_, "\r[%s] %3d%%  it %s  %s  ETA %s  %s\033[K", bar.c_str(), int(f * 100), its.c_str(),
+                 rate, format_duration(eta).c_str(), p.phase.c_str());
     std::fflush(out_);
     drawn_ = true;
     return;

@@ -103,19 +103,23 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
       a.options.output_exr = v;
     } else if (k == "--iterations") {
       uint64_t n = 0;
-      if (!value(v) || !parse_number(v, n) || n == 0) return "--iterations: expected a positive integer, got '" + v + "'";
+      if (!value(v) || !parse_number(v, n) || n == 0)
+        return "--iterations: expected a positive integer, got '" + v + "'";
       a.options.iterations = n;
     } else if (k == "--time") {
       double t = 0;
-      if (!value(v) || !parse_number(v, t) || !(t > 0)) return "--time: expected a positive number of seconds, got '" + v + "'";
+      if (!value(v) || !parse_number(v, t) || !(t > 0))
+        return "--time: expected a positive number of seconds, got '" + v + "'";
       a.options.time_seconds = t;
     } else if (k == "--target-error") {
       double t = 0;
-      if (!value(v) || !parse_number(v, t) || !(t > 0)) return "--target-error: expected a positive number, got '" + v + "'";
+      if (!value(v) || !parse_number(v, t) || !(t > 0))
+        return "--target-error: expected a positive number, got '" + v + "'";
       a.options.target_error = t;
     } else if (k == "--threads") {
       uint32_t n = 0;
-      if (!value(v) || !parse_number(v, n) || n == 0 || n > 4096) return "--threads: expected an integer in [1, 4096], got '" + v + "'";
+      if (!value(v) || !parse_number(v, n) || n == 0 || n > 4096)
+        return "--threads: expected an integer in [1, 4096], got '" + v + "'";
       a.options.threads = n;
     } else if (k == "--seed") {
       uint64_t s = 0;
@@ -127,7 +131,8 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
       for (std::string e; std::getline(ss, e, ',');)
         if (!e.empty()) a.options.elements.push_back(e);
     } else if (k == "--caustics") {
-      if (!value(v) || (v != "on" && v != "off")) return "--caustics: expected 'on' or 'off', got '" + v + "'";
+      if (!value(v) || (v != "on" && v != "off"))
+        return "--caustics: expected 'on' or 'off', got '" + v + "'";
       a.caustics = v;
     } else if (k == "--filter") {
       if (!value(v) || (v != "box" && v != "gaussian" && v != "blackman-harris"))
@@ -195,20 +200,23 @@ int render_command(const std::vector<std::string> &argv) {
   if (a.filter) desc.render.filter = *a.filter;
   if (a.region) {
     if ((*a.region)[2] > desc.render.width || (*a.region)[3] > desc.render.height) {
-      std::fprintf(stderr, "nimbus render: --region exceeds the image (%ux%u)\n", desc.render.width, desc.render.height);
+      std::fprintf(stderr, "nimbus render: --region exceeds the image (%ux%u)\n", desc.render.width,
+                   desc.render.height);
       return kExitUsage;
     }
     std::copy(a.region->begin(), a.region->end(), desc.render.region);
   }
   if (a.options.output_exr.empty())
-    a.options.output_exr = (std::filesystem::path("out") / std::filesystem::path(a.scene).stem()).string() + ".exr";
+    a.options.output_exr =
+        (std::filesystem::path("out") / std::filesystem::path(a.scene).stem()).string() + ".exr";
   {
     // Create the output directory so a render never fails at the very end for want of it.
     std::error_code ec;
     const auto parent = std::filesystem::path(a.options.output_exr).parent_path();
     if (!parent.empty()) std::filesystem::create_directories(parent, ec);
     if (ec) {
-      std::fprintf(stderr, "nimbus render: cannot create directory %s: %s\n", parent.c_str(), ec.message().c_str());
+      std::fprintf(stderr, "nimbus render: cannot create directory %s: %s\n", parent.c_str(),
+                   ec.message().c_str());
       return kExitFailure;
     }
   }
@@ -228,7 +236,8 @@ int render_command(const std::vector<std::string> &argv) {
       [&](int level, const std::string &line) {
         if (level < NIMBUS_LOG_WARNING) return;
         display.finish();
-        std::fprintf(stderr, "nimbus: %s: %s\n", level >= NIMBUS_LOG_ERROR ? "error" : "warning", line.c_str());
+        std::fprintf(stderr, "nimbus: %s: %s\n", level >= NIMBUS_LOG_ERROR ? "error" : "warning",
+                     line.c_str());
       });
   display.finish();
   if (!result) {
@@ -237,8 +246,8 @@ int render_command(const std::vector<std::string> &argv) {
   }
   const RenderResult &r = result.value();
   if (!a.quiet)
-    std::fprintf(stderr, "nimbus: %llu iterations in %.2f s -> %s, %s%s\n", (unsigned long long)r.iterations, r.seconds,
-                 r.exr_path.c_str(), r.png_path.c_str(), r.cancelled ? " (interrupted)" : "");
+    std::fprintf(stderr, "nimbus: %llu iterations in %.2f s -> %s, %s%s\n", (unsigned long long)r.iterations,
+                 r.seconds, r.exr_path.c_str(), r.png_path.c_str(), r.cancelled ? " (interrupted)" : "");
   if (!a.quiet && r.resumed_from)
     std::fprintf(stderr, "nimbus: resumed from iteration %llu\n", (unsigned long long)r.resumed_from);
   if (!a.quiet && !r.checkpoint_path.empty())

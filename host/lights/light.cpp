@@ -100,20 +100,19 @@ void light_sample_incident(const Light &light, const LightScene &scene, const ni
 
 float light_pdf_incident(const Light &light, const LightScene &scene, const nimbus_interaction_t &ref,
                          const Vec3f &wi, const nimbus_interaction_t *on_light) {
-  return std::visit(Overloaded{
-                        [&](const AreaLight &l) {
-                          return on_light ? area_pdf_incident(l, *scene.geometry, Vec3f::load(ref.p), wi, *on_light)
-                                          : 0.0f;
-                        },
-                        [&](const SunLight &l) {
-                          return !l.is_delta() && dot(wi, l.to_sun) >= l.cos_half_angle
-                                     ? uniform_cone_pdf(l.cos_half_angle)
-                                     : 0.0f;
-                        },
-                        [&](const EnvironmentLight &l) { return l.pdf(wi); },
-                        [](const auto &) { return 0.0f; },
-                    },
-                    light.kind);
+  return std::visit(
+      Overloaded{
+          [&](const AreaLight &l) {
+            return on_light ? area_pdf_incident(l, *scene.geometry, Vec3f::load(ref.p), wi, *on_light) : 0.0f;
+          },
+          [&](const SunLight &l) {
+            return !l.is_delta() && dot(wi, l.to_sun) >= l.cos_half_angle ? uniform_cone_pdf(l.cos_half_angle)
+                                                                          : 0.0f;
+          },
+          [&](const EnvironmentLight &l) { return l.pdf(wi); },
+          [](const auto &) { return 0.0f; },
+      },
+      light.kind);
 }
 
 Rgb light_eval_emitted(const Light &light, const nimbus_interaction_t &on_light, const Vec3f &wo) {
@@ -153,13 +152,13 @@ void light_sample_emission(const Light &light, const LightScene &scene, const fl
                  [&](const AreaLight &l) { area_sample_emission(l, *scene.geometry, u, out); },
                  [&](const SunLight &l) {
                    if (l.is_delta()) {
-                     set_infinite_emission(scene, l.to_sun, u[0], u[1], l.radiance, 1, NIMBUS_LIGHT_DELTA_DIRECTION,
-                                           out);
+                     set_infinite_emission(scene, l.to_sun, u[0], u[1], l.radiance, 1,
+                                           NIMBUS_LIGHT_DELTA_DIRECTION, out);
                      return;
                    }
                    const Vec3f w = l.frame.to_world(sample_uniform_cone(u[2], u[3], l.cos_half_angle));
-                   set_infinite_emission(scene, w, u[0], u[1], l.radiance, uniform_cone_pdf(l.cos_half_angle), 0,
-                                         out);
+                   set_infinite_emission(scene, w, u[0], u[1], l.radiance, uniform_cone_pdf(l.cos_half_angle),
+                                         0, out);
                  },
                  [&](const EnvironmentLight &l) {
                    float pdf = 0;

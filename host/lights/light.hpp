@@ -28,8 +28,8 @@ struct PointLight {
 
 struct SpotLight {
   Vec3f position;
-  Frame frame;          // n = the axis
-  Rgb intensity;        // W/sr on the axis
+  Frame frame;                                       // n = the axis
+  Rgb intensity;                                     // W/sr on the axis
   float cos_falloff_start = 1, cos_falloff_end = 0;  // full intensity inside start, zero outside end
   float falloff(float cos_theta) const;
 };
@@ -42,19 +42,19 @@ struct AreaLight {
 };
 
 struct SunLight {
-  Vec3f to_sun;           // unit, towards the sun
-  Frame frame;            // n = to_sun
-  Rgb radiance;           // inside the disk (cone); for a delta sun: the irradiance
+  Vec3f to_sun;              // unit, towards the sun
+  Frame frame;               // n = to_sun
+  Rgb radiance;              // inside the disk (cone); for a delta sun: the irradiance
   float cos_half_angle = 1;  // 1 = delta direction
   bool is_delta() const { return cos_half_angle >= 1; }
 };
 
 struct EnvironmentLight {
-  Rgb color;                     // uniform part (used when the map is empty)
-  std::vector<Rgb> map;          // lat-long, row-major, width x height, v = 0 at +z
+  Rgb color;             // uniform part (used when the map is empty)
+  std::vector<Rgb> map;  // lat-long, row-major, width x height, v = 0 at +z
   uint32_t width = 0, height = 0;
-  float rotate_radians = 0;      // about +z
-  Distribution2D distribution;   // luminance x sin(theta), for sampling
+  float rotate_radians = 0;     // about +z
+  Distribution2D distribution;  // luminance x sin(theta), for sampling
   Rgb lookup(const Vec3f &dir) const;
   float pdf(const Vec3f &dir) const;
 };

@@ -65,7 +65,8 @@ class Camera {
     const float aspect = float(height_) / float(width_);
     raster[0] = (sx / tan_half_ + 1) * 0.5f * float(width_);
     raster[1] = (1 - sy / (tan_half_ * aspect)) * 0.5f * float(height_);
-    if (!(raster[0] >= 0 && raster[0] < float(width_) && raster[1] >= 0 && raster[1] < float(height_))) return 0;
+    if (!(raster[0] >= 0 && raster[0] < float(width_) && raster[1] >= 0 && raster[1] < float(height_)))
+      return 0;
     const float cos_theta = dc.z / std::sqrt(dist2);
     const float pixel_area = sqr(2 * tan_half_ / float(width_));
     return cos_theta / (dist2 * pixel_area * sqr(sqr(cos_theta)));

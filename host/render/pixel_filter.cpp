@@ -40,9 +40,12 @@ PixelFilter::PixelFilter(FilterType type) : type_(type) {
 
 float PixelFilter::raw(float x, float y) const {
   switch (type_) {
-    case FilterType::Box: return std::abs(x) <= 0.5f && std::abs(y) <= 0.5f ? 1.0f : 0.0f;
-    case FilterType::Gaussian: return gaussian(x, 0.5f, radius_) * gaussian(y, 0.5f, radius_);
-    case FilterType::BlackmanHarris: return blackman_harris(x, radius_) * blackman_harris(y, radius_);
+    case FilterType::Box:
+      return std::abs(x) <= 0.5f && std::abs(y) <= 0.5f ? 1.0f : 0.0f;
+    case FilterType::Gaussian:
+      return gaussian(x, 0.5f, radius_) * gaussian(y, 0.5f, radius_);
+    case FilterType::BlackmanHarris:
+      return blackman_harris(x, radius_) * blackman_harris(y, radius_);
   }
   return 0;
 }

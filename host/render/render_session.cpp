@@ -25,7 +25,9 @@ constexpr uint64_t kDefaultIterations = 64;
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 // A plugin instance owned for the duration of the render.
 struct PluginHandle {
@@ -95,20 +97,28 @@ std::string render_fingerprint(const SceneDesc &desc, const RenderOptions &optio
 
 std::string status_text(nimbus_status_t s) {
   switch (s) {
-    case NIMBUS_E_INVALID_ARG: return "invalid argument";
-    case NIMBUS_E_UNSUPPORTED: return "unsupported";
-    case NIMBUS_E_NO_MEMORY: return "out of memory";
-    case NIMBUS_E_VERSION: return "version mismatch";
-    case NIMBUS_E_CANCELLED: return "cancelled";
-    case NIMBUS_E_INTERNAL: return "internal error";
-    default: return "status " + std::to_string(s);
+    case NIMBUS_E_INVALID_ARG:
+      return "invalid argument";
+    case NIMBUS_E_UNSUPPORTED:
+      return "unsupported";
+    case NIMBUS_E_NO_MEMORY:
+      return "out of memory";
+    case NIMBUS_E_VERSION:
+      return "version mismatch";
+    case NIMBUS_E_CANCELLED:
+      return "cancelled";
+    case NIMBUS_E_INTERNAL:
+      return "internal error";
+    default:
+      return "status " + std::to_string(s);
   }
 }
 
 }  // namespace
 
-Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &options, PluginRegistry &registry,
-                              std::atomic<bool> &cancel, const ProgressFn &progress, const MessageFn &message) {
+Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &options,
+                              PluginRegistry &registry, std::atomic<bool> &cancel, const ProgressFn &progress,
+                              const MessageFn &message) {
   SceneDesc desc_copy;  // only when the CLI overrides the seed
   const SceneDesc *desc = &desc_in;
   if (options.seed) {
@@ -131,8 +141,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   auto ip = registry.create(desc->render.integrator, NIMBUS_KIND_INTEGRATOR, host);
   if (!ip) return Error{desc->path + ": integrator: " + ip.error().message};
   integrator.registry = &registry, integrator.plugin = ip.value();
-  const std::string sampler_id = !options.light_sampler.empty()                ? options.light_sampler
-                                 : !desc->render.light_sampler.empty()         ? desc->render.light_sampler
+  const std::string sampler_id = !options.light_sampler.empty()             ? options.light_sampler
+                                 : !desc->render.light_sampler.empty()      ? desc->render.light_sampler
                                  : ctx.lights.count() > kTreeLightThreshold ? "nimbus.lights.tree"
                                                                             : "nimbus.lights.power";
   auto sp = registry.create(sampler_id, NIMBUS_KIND_LIGHT_SAMPLER, host);
@@ -157,7 +167,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   ctx.geometry->sphere_center().store(scene_info.scene_center);
   scene_info.scene_radius = ctx.geometry->sphere_radius();
   if (nimbus_status_t s = ls.prepare(sampler.plugin, &scene_info); s != NIMBUS_OK)
-    return Error{"light sampler '" + std::string(sampler.plugin->desc->id) + "' failed to prepare: " + status_text(s)};
+    return Error{"light sampler '" + std::string(sampler.plugin->desc->id) +
+                 "' failed to prepare: " + status_text(s)};
 
   std::vector<nimbus_option_t> opts;
   for (const auto &[k, v] : desc->render.options) opts.push_back({k.c_str(), v.c_str()});
@@ -184,7 +195,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
         film.request(e);
     }
   if (lightmix && !has_feature(integrator.plugin->desc, "lightmix"))
-    return Error{"integrator '" + integrator_id + "' does not produce LightMix layers (no \"lightmix\" feature)"};
+    return Error{"integrator '" + integrator_id +
+                 "' does not produce LightMix layers (no \"lightmix\" feature)"};
   if (lightmix) {
     // One layer per light group, "lightmix.<group>"; the integrator's contributions per light sum to beauty.
     for (const std::string &g : lightmix_layer_names(ctx.lights.group_names())) {
@@ -223,18 +235,20 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   // iteration limit.
   const bool cli_stops = options.iterations || options.time_seconds || options.target_error;
   const RenderDesc &scene_stops = desc->render;
-  const uint64_t iterations =
-      cli_stops ? options.iterations.value_or(0)
-      : scene_stops.iterations ? scene_stops.iterations
-      : (scene_stops.time_seconds > 0 || scene_stops.target_error > 0) ? 0
-                                                                        : kDefaultIterations;
+  const uint64_t iterations = cli_stops                ? options.iterations.value_or(0)
+                              : scene_stops.iterations ? scene_stops.iterations
+                              : (scene_stops.time_seconds > 0 || scene_stops.target_error > 0)
+                                  ? 0
+                                  : kDefaultIterations;
   const double budget = cli_stops ? options.time_seconds.value_or(0) : scene_stops.time_seconds;
   const double target_error = cli_stops ? options.target_error.value_or(0) : scene_stops.target_error;
   if (target_error > 0) {
     if (film.iterations() > 0)
-      return Error{"an error target (--target-error or render.target_error) cannot resume a checkpoint "
-                   "(the odd/even halves were not saved)"};
-    ctx.error_estimate = std::make_unique<ErrorEstimate>(desc->render.width, desc->render.height, ctx.worker_count);
+      return Error{
+          "an error target (--target-error or render.target_error) cannot resume a checkpoint "
+          "(the odd/even halves were not saved)"};
+    ctx.error_estimate =
+        std::make_unique<ErrorEstimate>(desc->render.width, desc->render.height, ctx.worker_count);
   }
   double estimated_error = -1;
 
@@ -298,7 +312,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
     ctx.arena->execute([&] {
       tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
         const int wi = tbb::this_task_arena::current_thread_index();
-        nimbus_thread_ctx_t tc{sizeof(nimbus_thread_ctx_t), uint32_t(wi < 0 ? 0 : wi), ctx.worker_count, 0, nullptr, 0};
+        nimbus_thread_ctx_t tc{
+            sizeof(nimbus_thread_ctx_t), uint32_t(wi < 0 ? 0 : wi), ctx.worker_count, 0, nullptr, 0};
         nimbus_tile_t tile = tiles[t];
         tile.iteration = i;
         if (nimbus_status_t s = it.render_tile(integrator.plugin, &tc, &tile); s != NIMBUS_OK) {
@@ -334,7 +349,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       p.total_iterations = iterations;
       p.elapsed_seconds = seconds_since(t0);
       p.time_budget = budget;
-      p.samples_per_second = double(region_pixels) * (done - resumed_from) / std::max(p.elapsed_seconds, 1e-9);
+      p.samples_per_second =
+          double(region_pixels) * (done - resumed_from) / std::max(p.elapsed_seconds, 1e-9);
       std::lock_guard lock(ctx.phase_mutex);
       p.phase = ctx.phase;
       progress(p);
@@ -342,7 +358,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   }
   const double seconds = seconds_since(t0);
   const bool was_cancelled = cancel.load();
-  it.end_render(integrator.plugin, failure != NIMBUS_OK ? failure : (was_cancelled ? NIMBUS_E_CANCELLED : NIMBUS_OK));
+  it.end_render(integrator.plugin,
+                failure != NIMBUS_OK ? failure : (was_cancelled ? NIMBUS_E_CANCELLED : NIMBUS_OK));
 
   // Write what we have, whatever ended the loop. The checkpoint goes first, so that an image write that
   // fails still leaves a way to recover the render; after a plugin failure the sums hold a partial
@@ -365,7 +382,11 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       {"light_sampler", sampler.plugin->desc->id},
       {"scene", desc->path},
       {"seed", std::to_string(desc->render.seed)},  // exact for any 64-bit seed
-      {"stopped_by", failure != NIMBUS_OK ? "error" : was_cancelled ? "cancel" : reached_target ? "target_error" : (iterations && done >= iterations) ? "iterations" : "time"}};
+      {"stopped_by", failure != NIMBUS_OK                 ? "error"
+                     : was_cancelled                      ? "cancel"
+                     : reached_target                     ? "target_error"
+                     : (iterations && done >= iterations) ? "iterations"
+                                                          : "time"}};
   // "seconds" is the render time of all the iterations in the image, over every resumed session.
   std::vector<std::pair<std::string, double>> nmeta = {{"iterations", double(done)},
                                                        {"seconds", previous_seconds + seconds},
@@ -387,8 +408,9 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   if (!checkpointed)
     return Error{checkpointed.error().message + " (the image was written to " + result.exr_path + ")"};
   if (failure != NIMBUS_OK)
-    return Error{"integrator '" + integrator_id + "' failed in " + failure_hook + " (" + status_text(failure) +
-                 "); the image so far (" + std::to_string(done) + " iterations) was written to " + result.exr_path};
+    return Error{"integrator '" + integrator_id + "' failed in " + failure_hook + " (" +
+                 status_text(failure) + "); the image so far (" + std::to_string(done) +
+                 " iterations) was written to " + result.exr_path};
   return result;
 }
 

@@ -23,10 +23,10 @@ struct RenderOptions {
   std::optional<uint64_t> seed;        // overrides the scene
   // Stop once the estimated relMSE of beauty (from odd/even half images, no reference) falls below it.
   std::optional<double> target_error;
-  uint32_t threads = 0;                // 0 = all cores
-  std::vector<std::string> elements;   // in addition to the scene's
-  std::string output_exr;              // PNG preview goes beside it (same stem)
-  std::string ocio_config;             // empty = default lookup
+  uint32_t threads = 0;               // 0 = all cores
+  std::vector<std::string> elements;  // in addition to the scene's
+  std::string output_exr;             // PNG preview goes beside it (same stem)
+  std::string ocio_config;            // empty = default lookup
   // Empty: nimbus.lights.tree above kTreeLightThreshold lights, nimbus.lights.power otherwise.
   std::string light_sampler;
   // Checkpoints (film/checkpoint.hpp): written between iterations every checkpoint_interval_seconds (<= 0:
@@ -44,12 +44,12 @@ struct RenderOptions {
 inline constexpr uint32_t kTreeLightThreshold = 8;
 
 struct RenderProgress {
-  uint64_t iteration = 0;          // completed iterations
-  uint64_t total_iterations = 0;   // 0 when stopping by time only
+  uint64_t iteration = 0;         // completed iterations
+  uint64_t total_iterations = 0;  // 0 when stopping by time only
   double elapsed_seconds = 0;
-  double time_budget = 0;          // 0 = none
-  double samples_per_second = 0;   // camera samples (pixels x iterations) per second
-  std::string phase;               // what a plugin reports it is doing, if anything
+  double time_budget = 0;         // 0 = none
+  double samples_per_second = 0;  // camera samples (pixels x iterations) per second
+  std::string phase;              // what a plugin reports it is doing, if anything
 };
 
 struct RenderResult {
@@ -57,7 +57,7 @@ struct RenderResult {
   double seconds = 0;
   bool cancelled = false;
   uint64_t nonfinite_samples = 0;
-  uint64_t rays = 0;  // closest-hit and shadow rays traced
+  uint64_t rays = 0;          // closest-hit and shadow rays traced
   uint64_t resumed_from = 0;  // iterations the checkpoint held when resuming, else 0
   std::string exr_path, png_path;
   std::string checkpoint_path;  // empty when no checkpoint was written
@@ -72,6 +72,7 @@ using MessageFn = std::function<void(int level, const std::string &line)>;
 // started, the film is written before an error is returned.
 // Warnings (e.g. an existing checkpoint about to be replaced) go to `message`.
 Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &options, PluginRegistry &registry,
-                              std::atomic<bool> &cancel, const ProgressFn &progress, const MessageFn &message);
+                              std::atomic<bool> &cancel, const ProgressFn &progress,
+                              const MessageFn &message);
 
 }  // namespace nimbus

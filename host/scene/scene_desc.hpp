@@ -22,11 +22,11 @@ struct SourceLocation {
 
 struct RenderDesc {
   uint32_t width = 512, height = 512;
-  uint64_t iterations = 0;     // 0 = not set (then time or the CLI decides; default 64)
-  double time_seconds = 0;     // 0 = no time budget
-  double target_error = 0;     // relMSE estimate to stop at; 0 = no error target
+  uint64_t iterations = 0;  // 0 = not set (then time or the CLI decides; default 64)
+  double time_seconds = 0;  // 0 = no time budget
+  double target_error = 0;  // relMSE estimate to stop at; 0 = no error target
   uint64_t seed = 1;
-  uint32_t max_depth = 16;     // path length in segments: a camera ray that hits a light is 1
+  uint32_t max_depth = 16;        // path length in segments: a camera ray that hits a light is 1
   std::string integrator = "pt";  // short name (pt, lt, caustics) or full plugin id
   // Options for the integrator (e.g. caustics: on). Values are kept as written.
   std::map<std::string, std::string> options;
@@ -34,15 +34,15 @@ struct RenderDesc {
   std::string filter = "box";         // pixel filter: box | gaussian | blackman-harris
   // Render region (crop window) in pixels, [x0, x1) x [y0, y1); empty (all zero) = the whole image.
   uint32_t region[4] = {0, 0, 0, 0};
-  std::string light_sampler;          // empty: the host's choice
+  std::string light_sampler;  // empty: the host's choice
 };
 
 struct CameraDesc {
   Vec3f position{0, -4, 1};
   Vec3f look_at{0, 0, 0};
   Vec3f up{0, 0, 1};
-  float fov_degrees = 45;  // horizontal field of view
-  float aperture = 0;      // thin-lens radius; 0 = pinhole
+  float fov_degrees = 45;    // horizontal field of view
+  float aperture = 0;        // thin-lens radius; 0 = pinhole
   float focus_distance = 0;  // 0 = distance to look_at
 };
 
@@ -67,8 +67,8 @@ struct MaterialDesc {
   Rgb k{3.9f, 2.45f, 2.14f};
   bool use_reflectance = false;
   Rgb reflectance{1, 1, 1};
-  float ior = 1.5f;        // dielectric
-  float roughness = 0;     // conductor and dielectric: user-facing roughness in [0, 1]; GGX alpha = r^2
+  float ior = 1.5f;     // dielectric
+  float roughness = 0;  // conductor and dielectric: user-facing roughness in [0, 1]; GGX alpha = r^2
   // Textures replace the constant above them where present (host/scene/materials_section.cpp has the
   // syntax and conventions). Lookups use (u, v) * uv_scale with v = 0 at the bottom of the image.
   TextureDesc albedo_texture;     // diffuse; colour (8/16-bit files are sRGB-decoded)
@@ -84,10 +84,10 @@ struct MaterialDesc {
 enum class ShapeType { Sphere, Rectangle, Box, Disk, Mesh };
 
 struct MeshData {
-  std::vector<Vec3f> positions;        // world space
-  std::vector<Vec3f> normals;          // per vertex, world space; empty = flat shading
-  std::vector<Vec2f> uvs;              // per vertex; may be empty
-  std::vector<uint32_t> indices;       // 3 per triangle
+  std::vector<Vec3f> positions;   // world space
+  std::vector<Vec3f> normals;     // per vertex, world space; empty = flat shading
+  std::vector<Vec2f> uvs;         // per vertex; may be empty
+  std::vector<uint32_t> indices;  // 3 per triangle
 };
 
 struct ShapeDesc {
@@ -114,9 +114,9 @@ struct LightDesc {
   Rgb intensity{1, 1, 1};  // point and spot: W/sr (from `intensity:`, or `power:` in W converted)
   // Spot: the axis it points along; sun: the direction its light travels (from the sun to the scene).
   Vec3f direction{0, 0, -1};
-  float cone_degrees = 30;      // spot: half angle of the cone
-  float softness_degrees = 5;   // spot: width of the smooth fall-off inside the cone's edge
-  Rgb irradiance{1, 1, 1};      // sun: W/m^2 on a surface facing it
+  float cone_degrees = 30;                 // spot: half angle of the cone
+  float softness_degrees = 5;              // spot: width of the smooth fall-off inside the cone's edge
+  Rgb irradiance{1, 1, 1};                 // sun: W/m^2 on a surface facing it
   float angular_diameter_degrees = 0.53f;  // sun: 0 = a delta direction
   std::string group;
   SourceLocation where;
@@ -127,11 +127,11 @@ enum class EnvironmentType { None, Color, Map, Sky };
 // The environment: radiance arriving from infinitely far away along directions no geometry blocks.
 struct EnvironmentDesc {
   EnvironmentType type = EnvironmentType::None;
-  Rgb color{0, 0, 0};      // uniform: radiance W/(m^2 sr)
-  std::string map;         // lat-long image path (absolute after parsing)
-  float scale = 1;         // multiplies the radiance of map, color and sky
+  Rgb color{0, 0, 0};        // uniform: radiance W/(m^2 sr)
+  std::string map;           // lat-long image path (absolute after parsing)
+  float scale = 1;           // multiplies the radiance of map, color and sky
   float rotate_degrees = 0;  // rotation about the up (+z) axis
-  float turbidity = 3;     // sky: Preetham turbidity in [1.7, 10]
+  float turbidity = 3;       // sky: Preetham turbidity in [1.7, 10]
   // Sky: direction towards the sun (unit); taken from the scene's sun light when it has one.
   Vec3f sun_direction{0, 0, 1};
   std::string group;

@@ -112,13 +112,16 @@ class EmitterSet {
         const float pdf_dir = two_sided ? 0.5f * std::abs(c) * kInvPi : std::max(c, 0.0f) * kInvPi;
         return sel * e.pdf_pos * pdf_dir;
       }
-      case EmitterKind::Point: return sel * kUniformSpherePdf;
-      case EmitterKind::Spot: return dot(w, e.axis) >= e.cos_theta_e ? sel * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
+      case EmitterKind::Point:
+        return sel * kUniformSpherePdf;
+      case EmitterKind::Spot:
+        return dot(w, e.axis) >= e.cos_theta_e ? sel * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
       case EmitterKind::Sun:
         if (!on_disk(p, w)) return 0;
         if (e.delta_direction()) return sel * e.pdf_pos;
         return dot(w, e.axis) >= e.cos_theta_e ? sel * e.pdf_pos * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
-      case EmitterKind::Environment: return 0;
+      case EmitterKind::Environment:
+        return 0;
     }
     return 0;
   }

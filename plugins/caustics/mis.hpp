@@ -34,8 +34,8 @@ inline float mis(float x) { return x * x; }
 
 // Photon-side state of one photon path (spec 3.3, "photon side").
 struct PhotonMis {
-  float A = 0;          // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
-  float B = 0;          // q_M,s' / q_M,s for the last stored rough vertex s', over the same factors
+  float A = 0;           // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
+  float B = 0;           // q_M,s' / q_M,s for the last stored rough vertex s', over the same factors
   bool b_valid = false;  // B refers to a stored rough vertex followed only by sharp vertices
 
   // Emission. hittable: BSDF sampling can hit the emitter (area and non-delta infinite lights).
@@ -77,17 +77,17 @@ inline float photon_nee_term(bool nee_possible, float nk, float d2, float lp, fl
 // One pending camera-side merge term (a merge technique at camera vertex s).
 struct CameraTerm {
   float R = 0;
-  uint32_t s = 0;          // the camera vertex index that created it
-  bool has_sharp = false;  // a sharp vertex after x_s
-  bool last_rough = false; // the last appended vertex was rough
-  bool dead = false;       // two adjacent rough vertices after x_s: no merge at s for longer paths
+  uint32_t s = 0;           // the camera vertex index that created it
+  bool has_sharp = false;   // a sharp vertex after x_s
+  bool last_rough = false;  // the last appended vertex was rough
+  bool dead = false;        // two adjacent rough vertices after x_s: no merge at s for longer paths
 };
 
 // Camera-side state of one camera path (spec 3.3, "camera side").
 struct CameraMis {
   CameraTerm terms[kLookupRoughVertices];
   uint32_t n_terms = 0;
-  uint32_t rough_count = 0;  // rough vertices among x_1 .. x_j (after append)
+  uint32_t rough_count = 0;                // rough vertices among x_1 .. x_j (after append)
   uint32_t d_photon = kPhotonMaxVertices;  // the photon tracer's D_photon (tests vary it)
 
   // Arrival at x_{j+1}: c_in = |cos| at it. Not called for escaped rays (infinite lights).

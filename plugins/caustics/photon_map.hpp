@@ -55,7 +55,8 @@ struct Photon {
   bool b_valid() const { return (bits >> 7) & 1u; }
   uint32_t light() const { return bits >> 8; }
   static uint32_t pack(uint32_t depth, bool prev_rough, bool b_valid, uint32_t light) {
-    return (depth & 63u) | (prev_rough ? 64u : 0u) | (b_valid ? 128u : 0u) | (std::min(light, kMaxLight) << 8);
+    return (depth & 63u) | (prev_rough ? 64u : 0u) | (b_valid ? 128u : 0u) |
+           (std::min(light, kMaxLight) << 8);
   }
   Vec3f position() const { return Vec3f::load(p); }
 };

@@ -9,8 +9,8 @@
 
 namespace nimbus::caustics {
 
-inline constexpr float kRadiusPixels = 1.5f;   // initial merge radius in pixel footprints
-inline constexpr float kRadiusAlpha = 0.75f;   // Knaus-Zwicker alpha: r^2 ~ j^(alpha - 1)
+inline constexpr float kRadiusPixels = 1.5f;      // initial merge radius in pixel footprints
+inline constexpr float kRadiusAlpha = 0.75f;      // Knaus-Zwicker alpha: r^2 ~ j^(alpha - 1)
 inline constexpr double kUsefulThreshold = 0.01;  // pixel useful iff Mp > tau * Tp
 inline constexpr uint32_t kMaxIdleLevel = 8;
 
@@ -40,14 +40,16 @@ struct ScheduleConfig {
   // the floor sets their photon density: at 4,096 the sphere-area scene's error at equal time was 3x
   // that at ~12,000 (docs/performance.md), for a per-iteration cost of a few percent either way.
   uint64_t min_floor = 16384;
-  uint64_t camera_paths = 1;           // camera paths per iteration (the render region's pixels)
+  uint64_t camera_paths = 1;  // camera paths per iteration (the render region's pixels)
 
   uint64_t effective_max() const {
     if (!(photon_paths_per_camera_path > 0)) return n_max;
     const double cap = std::round(photon_paths_per_camera_path * double(camera_paths));
     return std::min(n_max, std::max<uint64_t>(1, uint64_t(cap)));
   }
-  uint64_t effective_min() const { return std::min(effective_max(), std::max(min_floor, effective_max() / 64)); }
+  uint64_t effective_min() const {
+    return std::min(effective_max(), std::max(min_floor, effective_max() / 64));
+  }
 };
 
 class PhotonSchedule {
@@ -76,9 +78,10 @@ class PhotonSchedule {
     active_ = true;
     // Large passes serve several camera passes (photon : camera paths ~ 1 over time); small ones are
     // redone every iteration.
-    const uint64_t k = paths >= cfg_.camera_paths
-                           ? std::max<uint64_t>(1, uint64_t(std::llround(double(paths) / double(cfg_.camera_paths))))
-                           : 1;
+    const uint64_t k =
+        paths >= cfg_.camera_paths
+            ? std::max<uint64_t>(1, uint64_t(std::llround(double(paths) / double(cfg_.camera_paths))))
+            : 1;
     next_pass_ = iteration + k;
   }
 

@@ -21,9 +21,9 @@ DirectionCone cone_union(const DirectionCone &a, const DirectionCone &b);
 
 struct LightBounds {
   Vec3f lo{kInfinity}, hi{-kInfinity};
-  float phi = 0;             // power
-  DirectionCone normals;     // directions of the emitters' normals (cos_theta_o)
-  float cos_theta_e = 1;     // how far beyond its normal an emitter emits
+  float phi = 0;          // power
+  DirectionCone normals;  // directions of the emitters' normals (cos_theta_o)
+  float cos_theta_e = 1;  // how far beyond its normal an emitter emits
   bool two_sided = false;
 
   Vec3f centroid() const { return (lo + hi) * 0.5f; }

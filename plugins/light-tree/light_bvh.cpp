@@ -80,7 +80,7 @@ LightBounds bounds_of(const nimbus_light_info_t &info) {
   b.phi = std::isfinite(info.power) && info.power > 0 ? info.power : 0;
   const Vec3f axis = Vec3f::load(info.axis);
   b.normals = is_black(axis) || info.cos_theta_o <= -1 ? DirectionCone::sphere()
-                                                         : DirectionCone{normalize(axis), info.cos_theta_o};
+                                                       : DirectionCone{normalize(axis), info.cos_theta_o};
   b.cos_theta_e = info.cos_theta_e;
   b.two_sided = (info.flags & NIMBUS_LIGHT_TWO_SIDED) != 0;
   return b;

@@ -19,7 +19,8 @@ const char *const kRequired[] = {"nimbus.host.lights@1", nullptr};
 
 struct Node {
   LightBounds bounds;
-  uint32_t child_or_light = 0;  // interior: index of the second child (the first follows the node); leaf: light
+  uint32_t child_or_light =
+      0;  // interior: index of the second child (the first follows the node); leaf: light
   bool leaf = false;
 };
 
@@ -118,8 +119,8 @@ class LightTree final : public sdk::LightSampler {
  private:
   // Builds the subtree of lights [begin, end) (depth-first layout: first child right after its parent)
   // and returns its node index. `trail`/`depth`: the branch bits from the root (1 = second child).
-  uint32_t build(std::vector<std::pair<uint32_t, LightBounds>> &lights, size_t begin, size_t end, uint64_t trail,
-                 int depth) {
+  uint32_t build(std::vector<std::pair<uint32_t, LightBounds>> &lights, size_t begin, size_t end,
+                 uint64_t trail, int depth) {
     const uint32_t index = uint32_t(nodes_.size());
     nodes_.emplace_back();
     if (end - begin == 1) {
@@ -169,7 +170,8 @@ class LightTree final : public sdk::LightSampler {
         LightBounds below, above;
         for (int k = 0; k <= s; ++k) below = bounds_union(below, buckets[k]);
         for (int k = s + 1; k < kBuckets; ++k) above = bounds_union(above, buckets[k]);
-        const float cost = cost_of(below, extent[axis], max_extent) + cost_of(above, extent[axis], max_extent);
+        const float cost =
+            cost_of(below, extent[axis], max_extent) + cost_of(above, extent[axis], max_extent);
         if (cost > 0 && cost < best_cost) best_cost = cost, best_axis = axis, best_bucket = s;
       }
     }
@@ -197,9 +199,10 @@ class LightTree final : public sdk::LightSampler {
     const float theta_e = std::acos(clamp(b.cos_theta_e, -1, 1));
     const float theta_w = std::min(theta_o + theta_e, kPi);
     const float sin_o = std::sin(theta_o);
-    const float m_omega = 2 * kPi * (1 - std::cos(theta_o)) +
-                          kPi / 2 * (2 * theta_w * sin_o - std::cos(theta_o - 2 * theta_w) -
-                                     2 * theta_o * sin_o + std::cos(theta_o));
+    const float m_omega =
+        2 * kPi * (1 - std::cos(theta_o)) +
+        kPi / 2 *
+            (2 * theta_w * sin_o - std::cos(theta_o - 2 * theta_w) - 2 * theta_o * sin_o + std::cos(theta_o));
     const Vec3f d = b.hi - b.lo;
     const float area = 2 * (d.x * d.y + d.x * d.z + d.y * d.z);
     const float kr = axis_extent > 0 ? max_extent / axis_extent : 1;

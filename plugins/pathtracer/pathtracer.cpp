@@ -10,8 +10,12 @@
 namespace nimbus::pt {
 namespace {
 
-const char *const kRequired[] = {"nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1",
-                                 "nimbus.host.lights@1",      "nimbus.host.film@1",   "nimbus.host.rng@1",
+const char *const kRequired[] = {"nimbus.host.scene-query@1",
+                                 "nimbus.host.camera@1",
+                                 "nimbus.host.bsdf@1",
+                                 "nimbus.host.lights@1",
+                                 "nimbus.host.film@1",
+                                 "nimbus.host.rng@1",
                                  nullptr};
 const char *const kFeatures[] = {"progressive", "lightmix", nullptr};
 
@@ -20,8 +24,8 @@ constexpr uint64_t kStreamCamera = 0;
 
 class PathTracer final : public sdk::Integrator {
  public:
-  NIMBUS_DESCRIPTOR("nimbus.pt", "Path tracer (NEE + MIS)", "Nimbus", NIMBUS_KIND_INTEGRATOR, 1, 0, 0, kFeatures,
-                    kRequired)
+  NIMBUS_DESCRIPTOR("nimbus.pt", "Path tracer (NEE + MIS)", "Nimbus", NIMBUS_KIND_INTEGRATOR, 1, 0, 0,
+                    kFeatures, kRequired)
 
   nimbus_status_t init() override {
     scene_ = host().service<nimbus_host_scene_query_v1_t>(NIMBUS_SERVICE_SCENE_QUERY);
@@ -66,7 +70,9 @@ class PathTracer final : public sdk::Integrator {
   nimbus_status_t begin_render(const nimbus_render_info_t &info) override {
     // Requests are known now: keep only the ids of active elements, so unrequested work is skipped.
     const nimbus_host_t *h = host().get();
-    const auto active = [&](nimbus_element_t e) { return film_->is_active(h, e) ? e : NIMBUS_ELEMENT_INVALID; };
+    const auto active = [&](nimbus_element_t e) {
+      return film_->is_active(h, e) ? e : NIMBUS_ELEMENT_INVALID;
+    };
     ids_.direct = active(registered_.direct);
     ids_.indirect = active(registered_.indirect);
     ids_.emission = active(registered_.emission);

@@ -18,18 +18,18 @@ enum class VertexKind { Delta, SharpGlossy, Rough };
 enum class LightKind { Area, Point, Infinite, Directional };
 
 struct SyntheticPath {
-  uint32_t k = 0;                 // segments; x_0 lens, x_k emitter
-  std::vector<VertexKind> kind;   // x_1 .. x_{k-1} (index j)
-  std::vector<double> cos_prev;   // at x_j towards x_{j-1} (j = 1..k; x_k: cos_z for finite lights)
-  std::vector<double> cos_next;   // at x_j towards x_{j+1} (j = 0..k-1)
-  std::vector<double> d2;         // squared length of segment (x_j, x_{j+1}), j = 0..k-1
-  std::vector<double> w_cam;      // omega^C_j: pdf x_{j-1} -> x_j -> x_{j+1} (j = 1..k-1)
-  std::vector<double> w_light;    // omega^L_j: pdf x_{j+1} -> x_j -> x_{j-1}
+  uint32_t k = 0;                // segments; x_0 lens, x_k emitter
+  std::vector<VertexKind> kind;  // x_1 .. x_{k-1} (index j)
+  std::vector<double> cos_prev;  // at x_j towards x_{j-1} (j = 1..k; x_k: cos_z for finite lights)
+  std::vector<double> cos_next;  // at x_j towards x_{j+1} (j = 0..k-1)
+  std::vector<double> d2;        // squared length of segment (x_j, x_{j+1}), j = 0..k-1
+  std::vector<double> w_cam;     // omega^C_j: pdf x_{j-1} -> x_j -> x_{j+1} (j = 1..k-1)
+  std::vector<double> w_light;   // omega^L_j: pdf x_{j+1} -> x_j -> x_{j-1}
   LightKind light = LightKind::Area;
-  double lp = 1;                  // emitter product (0: the light emits no such photon)
-  double n_omega = 1;             // NEE solid-angle density incl. selection (area, infinite)
-  double pmf = 1;                 // NEE selection (delta lights)
-  double area = 1, neff = 1;      // pi r^2 and the photon path count
+  double lp = 1;              // emitter product (0: the light emits no such photon)
+  double n_omega = 1;         // NEE solid-angle density incl. selection (area, infinite)
+  double pmf = 1;             // NEE selection (delta lights)
+  double area = 1, neff = 1;  // pi r^2 and the photon path count
   uint32_t d_photon = kPhotonMaxVertices;
 
   bool finite() const { return light == LightKind::Area || light == LightKind::Point; }
@@ -41,9 +41,12 @@ struct SyntheticPath {
   // NEE area density of x_k seen from x_{k-1}.
   double nk() const {
     switch (light) {
-      case LightKind::Area: return n_omega * cos_prev[k] / d2[k - 1];
-      case LightKind::Infinite: return n_omega;
-      default: return pmf;
+      case LightKind::Area:
+        return n_omega * cos_prev[k] / d2[k - 1];
+      case LightKind::Infinite:
+        return n_omega;
+      default:
+        return pmf;
     }
   }
 };
@@ -184,8 +187,7 @@ Weights production(const SyntheticPath &p) {
   const float a_r = mis(float(p.area));
   const float neff = float(p.neff);
   for (uint32_t j = 1; j <= k; ++j) {
-    if (j >= 2 && !(j == k && !p.finite()))
-      cm.arrive(j == k ? float(p.cos_prev[k]) : float(p.cos_prev[j]));
+    if (j >= 2 && !(j == k && !p.finite())) cm.arrive(j == k ? float(p.cos_prev[k]) : float(p.cos_prev[j]));
     if (j == k) {
       if (p.hittable()) {
         const float nee_ratio = p.delta(k - 1) ? 0.0f : mis(float(p.n_omega / p.w_cam[k - 1]));
@@ -197,13 +199,15 @@ Weights production(const SyntheticPath &p) {
     const bool lookup = cm.append(p.rough(j));
     if (lookup && at[j].stored && p.lp > 0) {
       const PhotonAt &ph = at[j];
-      w.wm[j] = merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
-                             mis(float(p.area) * neff), mis(neff), mis(neff), cm.rough_count == 1, cm.gamma_sum(k));
+      w.wm[j] =
+          merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
+                       mis(float(p.area) * neff), mis(neff), mis(neff), cm.rough_count == 1, cm.gamma_sum(k));
       w.merged[j] = true;
     }
     if (j == k - 1 && !p.delta(j)) {
       const float hit_ratio = p.hittable() ? mis(float(p.w_cam[j] / p.n_omega)) : 0.0f;
-      w.wn = nee_weight(hit_ratio, a_r, float(p.w_light[j]), cm.s_cam(k), lp, float(p.g_last()), float(p.nk()));
+      w.wn =
+          nee_weight(hit_ratio, a_r, float(p.w_light[j]), cm.s_cam(k), lp, float(p.g_last()), float(p.nk()));
       w.nee = true;
     }
     cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, neff);
@@ -265,7 +269,8 @@ TEST(CausticsMis, NoMapGivesPathTracerWeights) {
     CameraMis cm;
     const float wh = hit_weight(mis(light / bsdf), 0.0f, cm.s_cam(3), 1.0f);
     const float wn = nee_weight(mis(bsdf / light), 0.0f, 1.0f, cm.s_cam(3), 1.0f, 1.0f, light);
-    const float ph = bsdf * bsdf / (bsdf * bsdf + light * light), pn = light * light / (bsdf * bsdf + light * light);
+    const float ph = bsdf * bsdf / (bsdf * bsdf + light * light),
+                pn = light * light / (bsdf * bsdf + light * light);
     EXPECT_NEAR(wh, ph, 1e-6f * std::max(ph, 1e-6f) + 1e-7f);
     EXPECT_NEAR(wn, pn, 1e-6f * std::max(pn, 1e-6f) + 1e-7f);
   }

@@ -25,11 +25,21 @@ std::vector<Photon> make_photons(size_t n, Layout layout, std::mt19937_64 &g) {
   for (size_t i = 0; i < n; ++i) {
     Vec3f p;
     switch (layout) {
-      case Layout::Uniform: p = {u(g), u(g), u(g)}; break;
-      case Layout::Clustered: p = centres[i % centres.size()] + Vec3f(gauss(g), gauss(g), gauss(g)); break;
-      case Layout::Coplanar: p = {u(g), u(g), 0.25f}; break;
-      case Layout::Collinear: p = {u(g), 0.5f, -0.5f}; break;
-      case Layout::Duplicates: p = centres[i % 3]; break;
+      case Layout::Uniform:
+        p = {u(g), u(g), u(g)};
+        break;
+      case Layout::Clustered:
+        p = centres[i % centres.size()] + Vec3f(gauss(g), gauss(g), gauss(g));
+        break;
+      case Layout::Coplanar:
+        p = {u(g), u(g), 0.25f};
+        break;
+      case Layout::Collinear:
+        p = {u(g), 0.5f, -0.5f};
+        break;
+      case Layout::Duplicates:
+        p = centres[i % 3];
+        break;
     }
     p.store(ph[i].p);
     ph[i].bits = uint32_t(i);  // identity for comparing sets
@@ -59,7 +69,8 @@ TEST(CausticsPhotonMap, RadiusQueriesEqualBruteForce) {
   std::mt19937_64 g(42);
   std::uniform_real_distribution<float> u(-1.2f, 1.2f);
   for (size_t n : {size_t(0), size_t(1), size_t(7), size_t(8), size_t(9), size_t(1000), size_t(100000)}) {
-    for (Layout layout : {Layout::Uniform, Layout::Clustered, Layout::Coplanar, Layout::Collinear, Layout::Duplicates}) {
+    for (Layout layout :
+         {Layout::Uniform, Layout::Clustered, Layout::Coplanar, Layout::Collinear, Layout::Duplicates}) {
       const std::vector<Photon> original = make_photons(n, layout, g);
       std::vector<Photon> ph = original;
       PhotonKdTree tree;

@@ -14,12 +14,15 @@ namespace nimbus::testing {
 namespace {
 
 // A glass sphere on a floor lit from the side, seen from above so that the caustic is not hidden.
-std::string sphere_scene(const std::string &light, int width = 80, int height = 45,
-                         const char *camera = "{ position: [1.6, -1.8, 2.4], look_at: [0.5, 0.05, 0.05], up: [0, 0, 1], fov: 36 }") {
+std::string sphere_scene(
+    const std::string &light, int width = 80, int height = 45,
+    const char *camera =
+        "{ position: [1.6, -1.8, 2.4], look_at: [0.5, 0.05, 0.05], up: [0, 0, 1], fov: 36 }") {
   return R"(
 render: { resolution: [)" +
          std::to_string(width) + ", " + std::to_string(height) + R"(], seed: 3, max_depth: 10 }
-camera: )" + std::string(camera) + R"(
+camera: )" +
+         std::string(camera) + R"(
 materials:
   floor: { type: diffuse, albedo: [0.7, 0.7, 0.7] }
   glass: { type: dielectric, ior: 1.5 }
@@ -151,8 +154,9 @@ double max_rel_diff(const std::vector<float> &beauty, const std::vector<const st
 
 TEST(CausticsRender, ElementsAndLightMixSumToBeauty) {
   SceneRenderer r;
-  const auto img = r.render(sphere_scene(kTwoLights),
-                            request("nimbus.caustics", 24, 2, {"direct", "indirect", "emission", "caustics", "lightmix"}));
+  const auto img =
+      r.render(sphere_scene(kTwoLights),
+               request("nimbus.caustics", 24, 2, {"direct", "indirect", "emission", "caustics", "lightmix"}));
   ASSERT_TRUE(img.layers.count("caustics"));
   const auto &L = img.layers;
   const std::vector<float> &beauty = L.at("beauty").data;
@@ -193,16 +197,17 @@ TEST(CausticsRender, AgreesWithPathTracer) {
 // through the sphere).
 void converges_to_light_tracer(const std::string &lights) {
   SceneRenderer r;
-  const std::string scene =
-      sphere_scene(lights, 80, 45, "{ position: [0.6, -1.2, 3.6], look_at: [0.6, 0, 0], up: [0, 0, 1], fov: 40 }");
+  const std::string scene = sphere_scene(
+      lights, 80, 45, "{ position: [0.6, -1.2, 3.6], look_at: [0.6, 0, 0], up: [0, 0, 1], fov: 40 }");
   const Region caustic{40, 14, 60, 32}, core{44, 18, 52, 24};
   const auto lt = r.render(scene, request("nimbus.lt", 2048, 34));
   const auto s1 = r.render(scene, request("nimbus.caustics", 8, 31));
   const auto s2 = r.render(scene, request("nimbus.caustics", 256, 33));
   const auto s3 = r.render(scene, request("nimbus.caustics", 256, 35));
   const double e1 = region_rel_mse(s1, lt, caustic), e2 = region_rel_mse(s2, lt, caustic);
-  std::printf("caustic region: relMSE(solver, lt) %.4g at 8 iterations (%.0f photon paths), %.4g at 256 (%.0f)\n", e1,
-              stat(s1, "caustics_photon_paths"), e2, stat(s2, "caustics_photon_paths"));
+  std::printf(
+      "caustic region: relMSE(solver, lt) %.4g at 8 iterations (%.0f photon paths), %.4g at 256 (%.0f)\n", e1,
+      stat(s1, "caustics_photon_paths"), e2, stat(s2, "caustics_photon_paths"));
   // Two independent renders: the photon noise of a region mean is heavy-tailed.
   const double mean = (region_mean(s2, caustic) + region_mean(s3, caustic)) / 2;
   const double mean_core = (region_mean(s2, core) + region_mean(s3, core)) / 2;

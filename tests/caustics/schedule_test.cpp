@@ -19,7 +19,8 @@ TEST(CausticsSchedule, RadiusStartsAtOneAndAHalfPixelsAndShrinks) {
     EXPECT_NEAR(r0, 1.5f * theta * ell * std::pow(float(j), -0.125f), 1e-6f * r0);
   }
   // Consistent but slow: after 10^4 passes the radius is still ~ 1/3 of the first one.
-  EXPECT_NEAR(merge_radius(theta, ell, 10000, 10) / merge_radius(theta, ell, 1, 10), std::pow(1e4f, -0.125f), 1e-5f);
+  EXPECT_NEAR(merge_radius(theta, ell, 10000, 10) / merge_radius(theta, ell, 1, 10), std::pow(1e4f, -0.125f),
+              1e-5f);
   // Lower clamp: 1e-6 of the scene radius.
   EXPECT_FLOAT_EQ(merge_radius(theta, 0.0f, 1, 10), 1e-5f);
   // Proportional to the path length to the first rough vertex (the pixel footprint there).
@@ -97,7 +98,7 @@ TEST(CausticsSchedule, BackOffWhenUseless) {
   EXPECT_EQ(s.idle_level(), 1u);
   EXPECT_EQ(s.plan(2), 0u);
   EXPECT_EQ(s.plan(3), (1u << 20) / 64);  // after 2^1 iterations without photons, N_min
-  s.pass_done(3, (1 << 20) / 64, 5);       // photons, but no useful pixel
+  s.pass_done(3, (1 << 20) / 64, 5);      // photons, but no useful pixel
   s.iteration_done(3, 0.0);
   EXPECT_FALSE(s.map_active());
   EXPECT_EQ(s.idle_level(), 2u);

@@ -12,9 +12,11 @@ namespace {
 
 MeshData box_mesh(const Vec3f &lo, const Vec3f &hi) {
   MeshData m;
-  for (int i = 0; i < 8; ++i) m.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
+  for (int i = 0; i < 8; ++i)
+    m.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
   // Outward winding (right-handed): each face listed counter-clockwise seen from outside.
-  const uint32_t f[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  const uint32_t f[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                            {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (auto &q : f) m.indices.insert(m.indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
   return m;
 }
@@ -119,7 +121,8 @@ TEST_P(SelfIntersection, SpawnedRaysLeaveTheSurface) {
   int acne = 0, tests = 0;
   for (int i = 0; i < 2000; ++i) {
     // Random ray from far away towards the sphere or box.
-    const Vec3f target = (i % 2 ? Vec3f(0, 0, 0) : Vec3f(3 * scale, 0, 0)) + Vec3f(U(rng), U(rng), U(rng)) * (0.9f * scale);
+    const Vec3f target =
+        (i % 2 ? Vec3f(0, 0, 0) : Vec3f(3 * scale, 0, 0)) + Vec3f(U(rng), U(rng), U(rng)) * (0.9f * scale);
     const Vec3f org = target + normalize(Vec3f(U(rng), U(rng), U(rng))) * (20 * scale);
     const nimbus_ray_t r = make_ray(org, target - org);
     nimbus_hit_t hit;

@@ -30,20 +30,24 @@ objects:
   for (int i = 0; i < 40; ++i) {
     const float x = -8 + 16 * U(rng), y = -4 + 8 * U(rng), z = 0.5f + 4 * U(rng);
     const float radiance = std::pow(10.0f, 6 * U(rng) - 3);
-    s += "  - { shape: " + std::string(i % 2 ? "sphere, radius: 0.1" : "rectangle, size: [0.3, 0.3]") +
-         (i % 2 ? ", center: [" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + "]" : "") +
-         ", material: lamp, emission: { radiance: [" + std::to_string(radiance) + ", " + std::to_string(radiance) +
-         ", " + std::to_string(radiance) + "] }" +
-         (i % 2 ? "" : ", transform: { rotate: [180, 0, 0], translate: [" + std::to_string(x) + ", " + std::to_string(y) +
-                           ", " + std::to_string(z) + "] }") +
-         " }\n";
+    s +=
+        "  - { shape: " + std::string(i % 2 ? "sphere, radius: 0.1" : "rectangle, size: [0.3, 0.3]") +
+        (i % 2 ? ", center: [" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + "]"
+               : "") +
+        ", material: lamp, emission: { radiance: [" + std::to_string(radiance) + ", " +
+        std::to_string(radiance) + ", " + std::to_string(radiance) + "] }" +
+        (i % 2 ? ""
+               : ", transform: { rotate: [180, 0, 0], translate: [" + std::to_string(x) + ", " +
+                     std::to_string(y) + ", " + std::to_string(z) + "] }") +
+        " }\n";
   }
   s += "lights:\n";
   for (int i = 0; i < 10; ++i)
-    s += "  - { type: point, position: [" + std::to_string(-8 + 16 * U(rng)) + ", " + std::to_string(-4 + 8 * U(rng)) +
-         ", " + std::to_string(0.5f + 4 * U(rng)) + "], intensity: [" + std::to_string(std::pow(10.0f, 3 * U(rng))) +
-         ", 1, 1] }\n";
-  s += "  - { type: spot, position: [0, -2, 5], direction: [0, 0, -1], cone: 30, softness: 10, intensity: [50, 50, 50] }\n";
+    s += "  - { type: point, position: [" + std::to_string(-8 + 16 * U(rng)) + ", " +
+         std::to_string(-4 + 8 * U(rng)) + ", " + std::to_string(0.5f + 4 * U(rng)) + "], intensity: [" +
+         std::to_string(std::pow(10.0f, 3 * U(rng))) + ", 1, 1] }\n";
+  s += "  - { type: spot, position: [0, -2, 5], direction: [0, 0, -1], cone: 30, softness: 10, intensity: "
+       "[50, 50, 50] }\n";
   s += "  - { type: sun, direction: [-1, 1, -2], irradiance: [3, 3, 3], angular_diameter: 0.53 }\n";
   return s;
 }
@@ -63,7 +67,8 @@ class SamplerHarness {
     auto p = registry_.create(sampler, NIMBUS_KIND_LIGHT_SAMPLER, services_->host());
     EXPECT_TRUE(p.ok()) << (p.ok() ? "" : p.error().message);
     plugin_ = p.value();
-    iface_ = static_cast<const nimbus_light_sampler_v1_t *>(plugin_->get_interface(plugin_, NIMBUS_IFACE_LIGHT_SAMPLER, 1));
+    iface_ = static_cast<const nimbus_light_sampler_v1_t *>(
+        plugin_->get_interface(plugin_, NIMBUS_IFACE_LIGHT_SAMPLER, 1));
     nimbus_scene_info_t info{};
     info.header.struct_size = sizeof(info);
     EXPECT_EQ(iface_->prepare(plugin_, &info), NIMBUS_OK);
@@ -72,7 +77,9 @@ class SamplerHarness {
 
   uint32_t light_count() const { return ctx_->lights.count(); }
   float pmf(const nimbus_interaction_t &ix, uint32_t l) const { return iface_->pmf(plugin_, &ix, l); }
-  uint32_t pick(const nimbus_interaction_t &ix, float u, float *pmf) const { return iface_->pick(plugin_, &ix, u, pmf); }
+  uint32_t pick(const nimbus_interaction_t &ix, float u, float *pmf) const {
+    return iface_->pick(plugin_, &ix, u, pmf);
+  }
 
  private:
   SceneDesc desc_;
@@ -134,7 +141,8 @@ TEST_P(LightSamplerTest, PmfSumsToOneAndMatchesPickFrequencies) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Samplers, LightSamplerTest, ::testing::Values("nimbus.lights.power", "nimbus.lights.tree"));
+INSTANTIATE_TEST_SUITE_P(Samplers, LightSamplerTest,
+                         ::testing::Values("nimbus.lights.power", "nimbus.lights.tree"));
 
 TEST(LightSamplers, TreeAndPowerRenderTheSameImage) {
   SceneRenderer r;

@@ -63,7 +63,8 @@ void check_light(const Built &b, uint32_t l, const Vec3f &p, int n = 200000) {
       nimbus_hit_t hit;
       b.geo->intersect(ray, hit);
       const bool infinite = s.flags & NIMBUS_LIGHT_INFINITE;
-      if (infinite ? hit.geom_id == NIMBUS_NONE : hit.geom_id != NIMBUS_NONE && b.geo->shapes()[hit.geom_id].light_id == l) {
+      if (infinite ? hit.geom_id == NIMBUS_NONE
+                   : hit.geom_id != NIMBUS_NONE && b.geo->shapes()[hit.geom_id].light_id == l) {
         e_light += luminance(Rgb::load(s.L)) * wi.z / s.pdf;
         // pdf_incident must reproduce the sample's pdf.
         nimbus_interaction_t on{};
@@ -94,10 +95,11 @@ void check_light(const Built &b, uint32_t l, const Vec3f &p, int n = 200000) {
     e_brute += luminance(L) * kPi;  // cos / pdf = pi
   }
   e_light /= n, e_brute /= n;
-  EXPECT_LE(pdf_mismatches, checked / 1000) << "light " << l << ": pdf_incident disagrees with the sample's pdf";
+  EXPECT_LE(pdf_mismatches, checked / 1000)
+      << "light " << l << ": pdf_incident disagrees with the sample's pdf";
   EXPECT_GT(e_brute, 0) << "light " << l;
-  EXPECT_NEAR(e_light / e_brute, 1.0, 0.03) << "light " << l << ": light sampling " << e_light << ", brute force "
-                                           << e_brute;
+  EXPECT_NEAR(e_light / e_brute, 1.0, 0.03)
+      << "light " << l << ": light sampling " << e_light << ", brute force " << e_brute;
 }
 
 TEST(LightSampling, AreaLightsAgreeWithBruteForce) {

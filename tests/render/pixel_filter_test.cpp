@@ -37,14 +37,16 @@ TEST_P(PixelFilterTest, WeightsAverageToOneAndFollowTheFilter) {
       double integral = 0;
       for (int sy = 0; sy < 8; ++sy)
         for (int sx = 0; sx < 8; ++sx)
-          integral += f.evaluate(-f.radius() + (bx + (sx + 0.5f) / 8) * cell, -f.radius() + (by + (sy + 0.5f) / 8) * cell) *
+          integral += f.evaluate(-f.radius() + (bx + (sx + 0.5f) / 8) * cell,
+                                 -f.radius() + (by + (sy + 0.5f) / 8) * cell) *
                       sqr(cell / 8);
       EXPECT_NEAR(hist[by * kBins + bx] / kN, integral, 0.002 + 0.05 * integral) << bx << "," << by;
     }
 }
 
 INSTANTIATE_TEST_SUITE_P(Filters, PixelFilterTest,
-                         ::testing::Values(FilterType::Box, FilterType::Gaussian, FilterType::BlackmanHarris));
+                         ::testing::Values(FilterType::Box, FilterType::Gaussian,
+                                           FilterType::BlackmanHarris));
 
 }  // namespace
 }  // namespace nimbus

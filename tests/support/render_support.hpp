@@ -26,8 +26,8 @@ struct RenderRequest {
   uint32_t threads = 2;
   std::vector<std::string> elements;
   std::vector<std::pair<std::string, std::string>> options;  // integrator options, e.g. caustics=on
-  std::string light_sampler;                                  // empty: the host's choice
-  double target_error = 0;                                    // > 0: stop at this estimated relMSE
+  std::string light_sampler;                                 // empty: the host's choice
+  double target_error = 0;                                   // > 0: stop at this estimated relMSE
 };
 
 class SceneRenderer {

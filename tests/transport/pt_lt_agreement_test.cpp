@@ -38,8 +38,8 @@ TEST(PtLtAgreement, DifferenceFallsAsOneOverIterations) {
   const auto lt4 = r.render(kDiffuseCornell, {"nimbus.lt", 8 * n, 14});
   const double e1 = rel_mse(pt1.layers.at("beauty").data, lt1.layers.at("beauty").data);
   const double e8 = rel_mse(pt4.layers.at("beauty").data, lt4.layers.at("beauty").data);
-  std::printf("relMSE(pt, lt): %.3g at %llu iterations, %.3g at %llu (ratio %.2f)\n", e1, (unsigned long long)n, e8,
-              (unsigned long long)(8 * n), e1 / e8);
+  std::printf("relMSE(pt, lt): %.3g at %llu iterations, %.3g at %llu (ratio %.2f)\n", e1,
+              (unsigned long long)n, e8, (unsigned long long)(8 * n), e1 / e8);
   // Unbiased estimators: 8x the samples gives 1/8 the squared difference (allow noise: at least 4x).
   // A bias between the two would make the ratio tend to 1.
   EXPECT_GT(e1 / e8, 4.0) << "relMSE " << e1 << " at " << n << " iterations, " << e8 << " at " << 8 * n;

@@ -30,10 +30,10 @@ typedef uint32_t nimbus_lobe_t;
 
 typedef struct nimbus_bsdf_sample {
   float wi[3];
-  float f[3];      /* BSDF value, no cosine */
-  float pdf;       /* solid-angle pdf of wi (1 for delta lobes) */
-  float pdf_rev;   /* pdf of sampling wo given wi in the opposite mode (1 for delta lobes) */
-  float eta;       /* relative IOR crossed (1 unless a refraction was sampled) */
+  float f[3];         /* BSDF value, no cosine */
+  float pdf;          /* solid-angle pdf of wi (1 for delta lobes) */
+  float pdf_rev;      /* pdf of sampling wo given wi in the opposite mode (1 for delta lobes) */
+  float eta;          /* relative IOR crossed (1 unless a refraction was sampled) */
   nimbus_lobe_t lobe; /* the single lobe sampled; 0 and pdf = 0 when sampling failed */
 } nimbus_bsdf_sample_t;
 

@@ -29,7 +29,8 @@ typedef struct nimbus_guiding_v1 {
   void (*propose)(const nimbus_plugin_t *plugin, const nimbus_thread_ctx_t *ctx, uint64_t path, float *u,
                   uint32_t dims);
   /* [render-thread] Tells the guide whether path `path` reached an important region. */
-  void (*report)(const nimbus_plugin_t *plugin, const nimbus_thread_ctx_t *ctx, uint64_t path, int32_t visible);
+  void (*report)(const nimbus_plugin_t *plugin, const nimbus_thread_ctx_t *ctx, uint64_t path,
+                 int32_t visible);
   /* [main-thread] stats borrowed. */
   void (*end_iteration)(const nimbus_plugin_t *plugin, uint64_t iteration, const nimbus_guide_stats_t *stats);
 } nimbus_guiding_v1_t;

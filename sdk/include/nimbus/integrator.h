@@ -42,8 +42,8 @@ typedef struct nimbus_render_info {
   nimbus_struct_header_t header; /* s_type = NIMBUS_S_TYPE_RENDER_INFO */
   uint32_t worker_count;         /* bound of nimbus_thread_ctx_t.worker_index */
   uint32_t reserved;
-  uint64_t first_iteration;      /* 1, or later when resuming */
-  uint64_t planned_iterations;   /* 0 when the render stops by time or error instead */
+  uint64_t first_iteration;    /* 1, or later when resuming */
+  uint64_t planned_iterations; /* 0 when the render stops by time or error instead */
 } nimbus_render_info_t;
 
 /* Pixels [x0, x1) × [y0, y1) of iteration `iteration` (1-based). */

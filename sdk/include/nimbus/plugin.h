@@ -21,10 +21,10 @@ typedef uint32_t nimbus_plugin_kind_t;
 /* Static description of one plugin. Everything it points to is plugin-owned until the library's deinit. */
 typedef struct nimbus_descriptor {
   nimbus_struct_header_t header; /* s_type = NIMBUS_S_TYPE_DESCRIPTOR */
-  const char *id;      /* plugin-owned: ASCII, no spaces; third parties use reverse DNS */
-  const char *name;    /* plugin-owned: human-readable name */
-  const char *vendor;  /* plugin-owned */
-  nimbus_version_t version; /* the plugin's own semantic version */
+  const char *id;                /* plugin-owned: ASCII, no spaces; third parties use reverse DNS */
+  const char *name;              /* plugin-owned: human-readable name */
+  const char *vendor;            /* plugin-owned */
+  nimbus_version_t version;      /* the plugin's own semantic version */
   nimbus_plugin_kind_t kind;
   uint32_t reserved;
   const char *const *features;          /* plugin-owned: NULL-terminated, e.g. "progressive", may be NULL */
