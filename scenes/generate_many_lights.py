@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Writes scenes/many-lights.yaml: 10,000 small emitters (spheres and quads) over a city-block-sized
 floor, with radiances log-uniform over 9 decades, plus a sun and a sky; and scenes/one-light.yaml, the
-same geometry lit by one area light, for the per-sample cost comparison of the many-light benchmark.
+same shapes (lamps unlit) under one area light, for the per-sample cost comparison of the many-light
+benchmark.
 
     scenes/generate_many_lights.py        (deterministic: fixed seed)
 """
@@ -43,6 +44,7 @@ def blocks():
 
 
 def lamps(n):
+    """The lamp shapes as (emissive line, dark line) pairs: the one-light scene keeps the same shapes."""
     out = []
     for k in range(n):
         x, y = rng.uniform(-50, 50), rng.uniform(-50, 50)
@@ -51,11 +53,13 @@ def lamps(n):
         c = [radiance * rng.uniform(0.6, 1.0) for _ in range(3)]
         col = f"[{c[0]:.6g}, {c[1]:.6g}, {c[2]:.6g}]"
         if k % 2:
-            out.append(f"  - {{ shape: sphere, center: [{x:.3f}, {y:.3f}, {z:.3f}], radius: 0.08, material: lamp, "
-                       f"emission: {{ radiance: {col} }} }}\n")
+            shape = f"shape: sphere, center: [{x:.3f}, {y:.3f}, {z:.3f}], radius: 0.08, material: lamp"
+            out.append((f"  - {{ {shape}, emission: {{ radiance: {col} }} }}\n", f"  - {{ {shape} }}\n"))
         else:
-            out.append(f"  - {{ shape: rectangle, size: [0.2, 0.2], material: lamp, emission: {{ radiance: {col} }}, "
-                       f"transform: {{ rotate: [180, 0, 0], translate: [{x:.3f}, {y:.3f}, {z:.3f}] }} }}\n")
+            shape = "shape: rectangle, size: [0.2, 0.2], material: lamp"
+            where = f"transform: {{ rotate: [180, 0, 0], translate: [{x:.3f}, {y:.3f}, {z:.3f}] }}"
+            out.append((f"  - {{ {shape}, emission: {{ radiance: {col} }}, {where} }}\n",
+                        f"  - {{ {shape}, {where} }}\n"))
     return out
 
 
@@ -65,14 +69,18 @@ environment: { type: sky, turbidity: 3, scale: 0.02 }
 """
 
 geometry = blocks()
+lamp_lines = lamps(10000)
 with open(os.path.join(HERE, "many-lights.yaml"), "w") as f:
     f.write(HEADER)
     f.writelines(geometry)
-    f.writelines(lamps(10000))
+    f.writelines(emissive for emissive, _ in lamp_lines)
     f.write(SKY)
+# The same shapes (the 10,000 lamps unlit), one area light, no sun or sky: the per-sample cost ratio
+# against it measures what the lights cost, not what their geometry costs.
 with open(os.path.join(HERE, "one-light.yaml"), "w") as f:
     f.write(HEADER)
     f.writelines(geometry)
+    f.writelines(dark for _, dark in lamp_lines)
     f.write("  - { shape: rectangle, size: [4, 4], material: lamp, emission: { radiance: [50, 50, 50] }, "
             "transform: { rotate: [180, 0, 0], translate: [0, 0, 20] } }\n")
 print("wrote many-lights.yaml and one-light.yaml")
