@@ -27,11 +27,26 @@ struct LightBounds {
   bool two_sided = false;
 
   Vec3f centroid() const { return (lo + hi) * 0.5f; }
-  // Importance for a receiver at p with normal n (zero vector: a point in a medium or unknown).
-  float importance(const Vec3f &p, const Vec3f &n) const;
 };
 
 LightBounds bounds_union(const LightBounds &a, const LightBounds &b);
+
+// LightBounds as the traversal reads them: the centroid, radius and cone sine that importance() needs are
+// computed once when the tree is built, not at every node of every light sample (two importance
+// evaluations per level, ~14 levels for 10,000 lights).
+struct NodeBounds {
+  NodeBounds() = default;
+  explicit NodeBounds(const LightBounds &b);
+  // Importance for a receiver at p with normal n (zero vector: a point in a medium or unknown).
+  float importance(const Vec3f &p, const Vec3f &n) const;
+
+  Vec3f centroid, axis;
+  float phi = 0;
+  float radius2 = 0, radius = 0;  // of the bounding box's circumscribed sphere
+  float half_diagonal = 0;        // lower bound of the distance term (pbrt-v4's d^2 clamp)
+  float cos_o = 1, sin_o = 0, cos_e = 1;
+  bool two_sided = false;
+};
 
 // The bounds of one light, from the host's light info. Infinite lights have none (phi = 0).
 LightBounds bounds_of(const nimbus_light_info_t &info);

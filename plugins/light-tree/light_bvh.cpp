@@ -46,28 +46,37 @@ LightBounds bounds_union(const LightBounds &a, const LightBounds &b) {
   return u;
 }
 
-float LightBounds::importance(const Vec3f &p, const Vec3f &n) const {
-  const Vec3f pc = centroid();
-  const float d2 = std::max(length_squared(p - pc), length(hi - lo) / 2);
-  const Vec3f wi = normalize(p - pc);
-  float cos_w = dot(normals.w, wi);
+NodeBounds::NodeBounds(const LightBounds &b)
+    : centroid(b.centroid()),
+      axis(b.normals.w),
+      phi(b.phi),
+      radius2(length_squared(b.hi - b.lo) / 4),
+      radius(length(b.hi - b.lo) / 2),
+      half_diagonal(length(b.hi - b.lo) / 2),
+      cos_o(b.normals.cos_theta),
+      sin_o(safe_sqrt(1 - b.normals.cos_theta * b.normals.cos_theta)),
+      cos_e(b.cos_theta_e),
+      two_sided(b.two_sided) {}
+
+float NodeBounds::importance(const Vec3f &p, const Vec3f &n) const {
+  const Vec3f d = p - centroid;
+  const float dist2 = length_squared(d);
+  const float d2 = std::max(dist2, half_diagonal);
+  const float inv_dist = dist2 > 0 ? 1 / std::sqrt(dist2) : 0.0f;
+  const Vec3f wi = d * inv_dist;
+  float cos_w = dist2 > 0 ? dot(axis, wi) : 1.0f;  // p at the centroid: any direction
   if (two_sided) cos_w = std::abs(cos_w);
-  if (!std::isfinite(cos_w)) cos_w = 1;  // p at the centroid
   const float sin_w = safe_sqrt(1 - cos_w * cos_w);
-  // Bound on the angle the box subtends from p (all directions when p is inside it).
-  float cos_b = -1;
-  const float r2 = length_squared(hi - lo) / 4;
-  const float dist2 = length_squared(p - pc);
-  if (dist2 > r2) cos_b = safe_sqrt(1 - r2 / dist2);
-  const float sin_b = safe_sqrt(1 - cos_b * cos_b);
-  const float cos_o = normals.cos_theta, sin_o = safe_sqrt(1 - cos_o * cos_o);
+  // Bound on the angle the box subtends from p (all directions when p is inside its sphere).
+  float cos_b = -1, sin_b = 0;
+  if (dist2 > radius2) sin_b = std::min(radius * inv_dist, 1.0f), cos_b = safe_sqrt(1 - sin_b * sin_b);
   const float cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, cos_o);
   const float sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, cos_o);
   const float cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-  if (cos_p <= cos_theta_e) return 0;
+  if (cos_p <= cos_e) return 0;
   float imp = phi * cos_p / d2;
   if (!is_black(n)) {
-    const float cos_i = std::abs(dot(-wi, n)), sin_i = safe_sqrt(1 - cos_i * cos_i);
+    const float cos_i = std::abs(dot(wi, n)), sin_i = safe_sqrt(1 - cos_i * cos_i);
     imp *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
   }
   return std::max(imp, 0.0f);

@@ -18,7 +18,7 @@ namespace {
 const char *const kRequired[] = {"nimbus.host.lights@1", nullptr};
 
 struct Node {
-  LightBounds bounds;
+  NodeBounds bounds;
   uint32_t child_or_light =
       0;  // interior: index of the second child (the first follows the node); leaf: light
   bool leaf = false;
@@ -125,7 +125,7 @@ class LightTree final : public sdk::LightSampler {
     nodes_.emplace_back();
     if (end - begin == 1) {
       LightBounds b = lights[begin].second;
-      nodes_[index] = {b, lights[begin].first, true};
+      nodes_[index] = {NodeBounds(b), lights[begin].first, true};
       trail_[lights[begin].first] = trail;
       leaf_of_[lights[begin].first] = index;
       return index;
@@ -142,7 +142,7 @@ class LightTree final : public sdk::LightSampler {
     size_t mid = depth < 40 ? split(lights, begin, end, all, clo, chi) : (begin + end) / 2;
     build(lights, begin, mid, trail, depth + 1);
     const uint32_t second = build(lights, mid, end, trail | (uint64_t(1) << depth), depth + 1);
-    nodes_[index] = {all, second, false};
+    nodes_[index] = {NodeBounds(all), second, false};
     return index;
   }
 
