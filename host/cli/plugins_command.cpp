@@ -4,23 +4,11 @@
 
 #include "abi/host_services.hpp"
 #include "cli/commands.hpp"
+#include "render/plugin_descriptor.hpp"
 #include "render/plugin_registry.hpp"
 
 namespace nimbus::cli {
 namespace {
-
-const char *kind_name(nimbus_plugin_kind_t k) {
-  switch (k) {
-    case NIMBUS_KIND_INTEGRATOR:
-      return "integrator";
-    case NIMBUS_KIND_LIGHT_SAMPLER:
-      return "light-sampler";
-    case NIMBUS_KIND_GUIDING:
-      return "guiding";
-    default:
-      return "?";
-  }
-}
 
 constexpr const char *kHelp =
     "usage: nimbus plugins\n"
@@ -53,7 +41,7 @@ int plugins_command(const std::vector<std::string> &args) {
     if (r.has_descriptor)
       std::snprintf(version, sizeof version, "%u.%u.%u", r.version.major, r.version.minor, r.version.patch);
     std::printf("%-28s %-14s %-9s %-8s %s\n", r.has_descriptor ? r.id.c_str() : "-",
-                r.has_descriptor ? kind_name(r.kind) : "-", version, r.loaded ? "loaded" : "refused",
+                r.has_descriptor ? kind_name(r.kind).c_str() : "-", version, r.loaded ? "loaded" : "refused",
                 r.path.c_str());
     if (!r.loaded) {
       std::printf("    reason: %s\n", r.status.c_str());

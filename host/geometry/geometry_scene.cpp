@@ -132,7 +132,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       ng = normalize(d);
       p = s.center + ng * s.radius;
       ns = ng;
-      error = (abs(s.center) + abs(ng) * s.radius) * rounding_gamma(5);
+      error = sphere_point_error(s.center, ng, s.radius);
       const float phi = std::atan2(ng.y, ng.x), theta = std::acos(clamp(ng.z, -1, 1));
       uv = {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), theta / kPi};
       dpdu = Vec3f{-ng.y, ng.x, 0} * (2 * kPi * s.radius);
@@ -148,7 +148,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       const Vec3f l = f.to_local(p - s.center);
       uv = {0.5f + 0.5f * l.x / s.radius, 0.5f + 0.5f * l.y / s.radius};
       dpdu = f.s, dpdv = f.t;
-      error = (abs(p) + abs(s.center)) * rounding_gamma(6);
+      error = disk_point_error(p, s.center);
       break;
     }
     default: {
@@ -159,7 +159,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       const float b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
       // Barycentric interpolation is far more accurate than o + t d (pbrt-v4 section 6.8).
       p = p0 * b0 + p1 * b1 + p2 * b2;
-      error = (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * rounding_gamma(7);
+      error = triangle_point_error(p0, p1, p2, b0, b1, b2);
       // Far from the origin a point within an ulp of an edge can round onto the plane of the neighbouring
       // face, where a new ray would meet that face at t = 0 from its far side (a leak at box corners).
       // Nudging the point a few ulps towards the triangle's centroid, within its plane, keeps it strictly

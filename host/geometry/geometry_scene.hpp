@@ -70,6 +70,22 @@ inline Vec3f oriented_triangle_normal(const MeshData &m, uint32_t prim, float b1
 // pbrt-v4's gamma(n): the relative error bound of n chained float operations (u = 2^-24).
 constexpr float rounding_gamma(int n) { return float(n) * 0x1p-24f / (1 - float(n) * 0x1p-24f); }
 
+// Bounds on each coordinate's rounding error of points computed on a shape (pbrt-v4 section 6.8): shared by
+// ray hits (GeometryScene::interaction) and light samples (area_light.cpp), which compute them alike.
+// A point re-projected onto a sphere: center + n * radius.
+inline Vec3f sphere_point_error(const Vec3f &center, const Vec3f &n, float radius) {
+  return (abs(center) + abs(n) * radius) * rounding_gamma(5);
+}
+// A point projected into a disk's plane or placed in it from its centre.
+inline Vec3f disk_point_error(const Vec3f &p, const Vec3f &center) {
+  return (abs(p) + abs(center)) * rounding_gamma(6);
+}
+// A point interpolated on a triangle with barycentrics b0, b1, b2.
+inline Vec3f triangle_point_error(const Vec3f &p0, const Vec3f &p1, const Vec3f &p2, float b0, float b1,
+                                  float b2) {
+  return (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * rounding_gamma(7);
+}
+
 // The distance along ng that takes a point off its surface when each coordinate of the point is off by at
 // most the matching component of `error` (pbrt-v4 section 6.8.6): error is per axis, so a floor at z = 0
 // far out along x gets an offset of a few ulps of z, not of x.

@@ -11,24 +11,20 @@ struct SurfacePoint {
   float pdf_area = 0;
 };
 
-Vec3f sphere_point_error(const ShapeRecord &s, const Vec3f &n) {
-  return (abs(s.center) + abs(n) * s.radius) * rounding_gamma(5);
-}
-
 SurfacePoint sample_area(const AreaLight &a, const ShapeRecord &s, float u0, float u1) {
   SurfacePoint sp;
   switch (s.type) {
     case ShapeType::Sphere: {
       const Vec3f d = sample_uniform_sphere(u0, u1);
       sp.p = s.center + d * s.radius, sp.n = d;
-      sp.error = sphere_point_error(s, d);
+      sp.error = sphere_point_error(s.center, d, s.radius);
       break;
     }
     case ShapeType::Disk: {
       const Vec2f d = sample_uniform_disk_concentric(u0, u1);
       const Frame f = Frame::from_normal(s.normal);
       sp.p = s.center + (f.s * d.x + f.t * d.y) * s.radius, sp.n = s.normal;
-      sp.error = (abs(s.center) + Vec3f(s.radius)) * rounding_gamma(6);
+      sp.error = disk_point_error(sp.p, s.center);
       break;
     }
     default: {
@@ -39,7 +35,7 @@ SurfacePoint sample_area(const AreaLight &a, const ShapeRecord &s, float u0, flo
       const Vec3f &p0 = m.positions[m.indices[3 * t]], &p1 = m.positions[m.indices[3 * t + 1]],
                   &p2 = m.positions[m.indices[3 * t + 2]];
       sp.p = p0 * (1 - b.x - b.y) + p1 * b.x + p2 * b.y;
-      sp.error = (abs(p0 * (1 - b.x - b.y)) + abs(p1 * b.x) + abs(p2 * b.y)) * rounding_gamma(7);
+      sp.error = triangle_point_error(p0, p1, p2, 1 - b.x - b.y, b.x, b.y);
       sp.n = oriented_triangle_normal(m, uint32_t(t), b.x, b.y);
       break;
     }
@@ -84,7 +80,7 @@ void area_sample_incident(const AreaLight &a, const GeometryScene &geo, const Ve
     const float t = b - safe_sqrt(sqr(s.radius) - (dc * dc - b * b));
     ln = normalize(p + w * t - s.center);
     lp = s.center + ln * s.radius;
-    error = sphere_point_error(s, ln);
+    error = sphere_point_error(s.center, ln, s.radius);
     pdf = 1 / (2 * kPi * omc);
   } else {
     const SurfacePoint sp = sample_area(a, s, u[0], u[1]);

@@ -42,8 +42,9 @@ struct NodeBounds {
 
   Vec3f centroid, axis;
   float phi = 0;
-  float radius2 = 0, radius = 0;  // of the bounding box's circumscribed sphere
-  float half_diagonal = 0;        // lower bound of the distance term (pbrt-v4's d^2 clamp)
+  // Of the bounding box's circumscribed sphere (half its diagonal). The radius also floors the distance
+  // term, as pbrt-v4 floors d^2 by half the diagonal.
+  float radius = 0, radius2 = 0;
   float cos_o = 1, sin_o = 0, cos_e = 1;
   bool two_sided = false;
 };

@@ -50,9 +50,8 @@ NodeBounds::NodeBounds(const LightBounds &b)
     : centroid(b.centroid()),
       axis(b.normals.w),
       phi(b.phi),
-      radius2(length_squared(b.hi - b.lo) / 4),
       radius(length(b.hi - b.lo) / 2),
-      half_diagonal(length(b.hi - b.lo) / 2),
+      radius2(radius * radius),
       cos_o(b.normals.cos_theta),
       sin_o(safe_sqrt(1 - b.normals.cos_theta * b.normals.cos_theta)),
       cos_e(b.cos_theta_e),
@@ -61,7 +60,7 @@ NodeBounds::NodeBounds(const LightBounds &b)
 float NodeBounds::importance(const Vec3f &p, const Vec3f &n) const {
   const Vec3f d = p - centroid;
   const float dist2 = length_squared(d);
-  const float d2 = std::max(dist2, half_diagonal);
+  const float d2 = std::max(dist2, radius);
   const float inv_dist = dist2 > 0 ? 1 / std::sqrt(dist2) : 0.0f;
   const Vec3f wi = d * inv_dist;
   float cos_w = dist2 > 0 ? dot(axis, wi) : 1.0f;  // p at the centroid: any direction
