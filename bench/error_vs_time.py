@@ -17,17 +17,9 @@ import csv
 import json
 import os
 import statistics
-import subprocess
-import sys
 import time
 
-
-def run(cmd):
-    print("+", " ".join(cmd), flush=True)
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if proc.returncode != 0:
-        sys.exit(f"command failed ({proc.returncode}): {' '.join(cmd)}\n{proc.stderr}")
-    return proc.stdout
+from nimbus_tools import run
 
 
 def render(nimbus, scene, integrator, seconds, seed, out):

@@ -11,34 +11,20 @@ import argparse
 import json
 import os
 import statistics
-import subprocess
-import sys
+
+from nimbus_tools import exr_metadata, run
 
 
-def run(cmd):
-    print("+", " ".join(cmd), flush=True)
-    p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if p.returncode != 0:
-        sys.exit(f"failed: {' '.join(cmd)}\n{p.stderr}")
-    return p.stdout
-
-
-def meta(nimbus, exr):
-    """Iterations and seconds from the EXR header (oiiotool, from Debian's openimageio-tools)."""
-    out = run(["oiiotool", "--info", "-v", exr])
-    vals = {}
-    for line in out.splitlines():
-        line = line.strip()
-        for key in ("nimbus:iterations", "nimbus:seconds"):
-            if line.startswith(key + ":"):
-                vals[key] = float(line.split(":", 2)[2])
-    return vals["nimbus:iterations"], vals["nimbus:seconds"]
+def meta(exr):
+    """Iterations and seconds from the EXR header."""
+    m = exr_metadata(exr)
+    return float(m["nimbus:iterations"]), float(m["nimbus:seconds"])
 
 
 def render(nimbus, scene, out, seconds, seed, sampler):
     run([nimbus, "render", scene, "-o", out, "--time", str(seconds), "--seed", str(seed), "--light-sampler", sampler,
          "-q"])
-    return meta(nimbus, out)
+    return meta(out)
 
 
 def main():

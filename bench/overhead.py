@@ -12,29 +12,15 @@ import argparse
 import csv
 import os
 import statistics
-import subprocess
-import sys
 import tempfile
 
-
-def metadata(path):
-    out = subprocess.run(["oiiotool", "--info", "-v", path], stdout=subprocess.PIPE, text=True, check=True).stdout
-    meta = {}
-    for line in out.splitlines():
-        line = line.strip()
-        if line.startswith("nimbus:") and ":" in line:
-            key, _, value = line.partition(": ")
-            meta[key] = value.strip().strip('"')
-    return meta
+from nimbus_tools import exr_metadata, run
 
 
 def render(nimbus, scene, integrator, iterations, seed, out):
-    cmd = [nimbus, "render", scene, "-o", out, "--integrator", integrator, "--iterations", str(iterations),
-           "--seed", str(seed), "-q"]
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if proc.returncode != 0:
-        sys.exit(f"command failed ({proc.returncode}): {' '.join(cmd)}\n{proc.stderr}")
-    return metadata(out)
+    run([nimbus, "render", scene, "-o", out, "--integrator", integrator, "--iterations", str(iterations),
+         "--seed", str(seed), "-q"], echo=False)
+    return exr_metadata(out)
 
 
 def main():
@@ -52,9 +38,9 @@ def main():
         for scene in args.scenes:
             secs = {"pt": [], "caustics": []}
             stats = []
-            for run in range(args.runs):
+            for i in range(args.runs):
                 for integrator in ("pt", "caustics"):
-                    meta = render(args.nimbus, scene, integrator, args.iterations, run + 1, out)
+                    meta = render(args.nimbus, scene, integrator, args.iterations, i + 1, out)
                     secs[integrator].append(float(meta["nimbus:seconds"]))
                     if integrator == "caustics":
                         stats.append(meta)
