@@ -49,7 +49,7 @@ def lamps(n):
     for k in range(n):
         x, y = rng.uniform(-50, 50), rng.uniform(-50, 50)
         z = rng.uniform(0.3, 14)
-        radiance = 10 ** rng.uniform(-4, 5)  # 9 decades
+        radiance = 10 ** rng.uniform(-6.5, 2.5)  # 9 decades; the brightest lamps light ~5 m around them
         c = [radiance * rng.uniform(0.6, 1.0) for _ in range(3)]
         col = f"[{c[0]:.6g}, {c[1]:.6g}, {c[2]:.6g}]"
         if k % 2:
@@ -64,7 +64,7 @@ def lamps(n):
 
 
 SKY = """lights:
-  - { type: sun, direction: [-0.4, 0.6, -0.25], irradiance: [20, 19, 17], angular_diameter: 0.53 }
+  - { type: sun, direction: [-0.4, 0.6, -0.25], irradiance: [3, 2.85, 2.55], angular_diameter: 0.53 }
 environment: { type: sky, turbidity: 3, scale: 0.02 }
 """
 

@@ -51,10 +51,25 @@ struct SunLight {
 
 struct EnvironmentLight {
   Rgb color;             // uniform part (used when the map is empty)
-  std::vector<Rgb> map;  // lat-long, row-major, width x height, v = 0 at +z
+  std::vector<Rgb> map;  // lat-long, row-major, width x height, v = 0 at +z; input of finish_build()
   uint32_t width = 0, height = 0;
-  float rotate_radians = 0;     // about +z
+  float rotate_radians = 0;  // about +z
+  // Radiance interpolated between texel centres (baked skies: a smooth function on a coarse map) rather
+  // than the nearest texel (photographed maps, shown as they are).
+  bool bilinear = false;
+  // A texel's radiance beside its sampling density in (u, v): an escaped ray looks up both (radiance,
+  // then the MIS pdf) and they share a cache line; on a 512x256 sky the two separate tables missed twice.
+  struct Texel {
+    Rgb radiance;
+    float pdf_uv = 0;
+  };
+  std::vector<Texel> texels;
   Distribution2D distribution;  // luminance x sin(theta), for sampling
+
+  bool uniform() const { return texels.empty(); }
+  // Builds the sampling distribution and the texels from `map` (which it then releases); returns the
+  // integral of the luminance over the sphere.
+  double finish_build();
   Rgb lookup(const Vec3f &dir) const;
   float pdf(const Vec3f &dir) const;
 };

@@ -31,22 +31,28 @@ struct LightBounds {
 
 LightBounds bounds_union(const LightBounds &a, const LightBounds &b);
 
-// LightBounds as the traversal reads them: the centroid, radius and cone sine that importance() needs are
-// computed once when the tree is built, not at every node of every light sample (two importance
-// evaluations per level, ~14 levels for 10,000 lights).
-struct NodeBounds {
-  NodeBounds() = default;
-  explicit NodeBounds(const LightBounds &b);
-  // Importance for a receiver at p with normal n (zero vector: a point in a medium or unknown).
-  float importance(const Vec3f &p, const Vec3f &n) const;
+// Four sibling subtrees' bounds side by side, as traversal reads them: one SIMD evaluation gives the
+// importance of all four for a receiving point, so a sample walks ~7 levels of 4-wide nodes for 10,000
+// lights instead of 14 binary levels with two scalar evaluations each. The centroid, radius and cone sine
+// that importance needs are computed once when the tree is built. Empty lanes have zero power.
+struct WideNode {
+  static constexpr int kWidth = 4;
+  // Sets lane k to the bounds b (of a light when leaf, else of the wide node `child`).
+  void set(int k, const LightBounds &b, uint32_t child, bool leaf);
+  // Importance of each lane for a receiver at p with normal n (zero vector: a point in a medium or
+  // unknown): the power over the squared distance, times the bounds on the emitters' and the receiver's
+  // cosines (Conty Estevez & Kulla 2018; pbrt-v4's LightBounds::Importance).
+  void importance(const Vec3f &p, const Vec3f &n, float out[kWidth]) const;
 
-  Vec3f centroid, axis;
-  float phi = 0;
-  // Of the bounding box's circumscribed sphere (half its diagonal). The radius also floors the distance
+  // Of the bounding box's circumscribed sphere (half its diagonal); the radius also floors the distance
   // term, as pbrt-v4 floors d^2 by half the diagonal.
-  float radius = 0, radius2 = 0;
-  float cos_o = 1, sin_o = 0, cos_e = 1;
-  bool two_sided = false;
+  alignas(16) float cx[kWidth]{}, cy[kWidth]{}, cz[kWidth]{}, radius[kWidth]{}, radius2[kWidth]{};
+  alignas(16) float ax[kWidth]{}, ay[kWidth]{}, az[kWidth]{}, cos_o[kWidth]{}, sin_o[kWidth]{},
+      cos_e[kWidth]{};
+  alignas(16) float phi[kWidth]{};
+  alignas(16) int32_t two_sided[kWidth]{};  // all bits set when two-sided
+  uint32_t child[kWidth]{};                 // light index (leaf lanes) or wide node index
+  uint8_t leaf_mask = 0;                    // bit k: lane k is a light
 };
 
 // The bounds of one light, from the host's light info. Infinite lights have none (phi = 0).
