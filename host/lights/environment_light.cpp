@@ -11,11 +11,11 @@ struct LatLong {
 };
 
 LatLong to_latlong(const Vec3f &dir, float rotate) {
-  float phi = std::atan2(dir.y, dir.x) - rotate;
+  float phi = atan2_fast(dir.y, dir.x) - rotate;
   phi -= 2 * kPi * std::floor(phi / (2 * kPi));
   // sin(theta) from x and y, not sqrt(1 - z^2): near the poles that difference cancels to a few bits,
   // and the solid-angle pdf divides by it. (No hypot: dir is a unit vector, x^2 + y^2 cannot overflow.)
-  const float sin_theta = std::sqrt(dir.x * dir.x + dir.y * dir.y), theta = std::atan2(sin_theta, dir.z);
+  const float sin_theta = std::sqrt(dir.x * dir.x + dir.y * dir.y), theta = atan2_fast(sin_theta, dir.z);
   return {std::min(phi / (2 * kPi), 0x1.fffffep-1f), std::min(theta / kPi, 0x1.fffffep-1f), sin_theta};
 }
 
