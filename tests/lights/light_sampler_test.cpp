@@ -141,6 +141,43 @@ TEST_P(LightSamplerTest, PmfSumsToOneAndMatchesPickFrequencies) {
   }
 }
 
+// Thousands of lights, 500 of them at one point (the split heuristic cannot separate them: median splits
+// deep in the tree), powers over 9 decades: pmfs still sum to one and pick() reports pmf().
+TEST_P(LightSamplerTest, ThousandsOfLightsSomeCoincident) {
+  std::string s = R"(
+render: { resolution: [8, 8] }
+camera: { position: [0, -9, 3], look_at: [0, 0, 1], up: [0, 0, 1], fov: 60 }
+materials: { white: { type: diffuse, albedo: [0.7, 0.7, 0.7] } }
+objects: [ { shape: rectangle, size: [20, 20], material: white } ]
+lights:
+)";
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> U(0, 1);
+  for (int i = 0; i < 3500; ++i) {
+    const Vec3f p = i < 500 ? Vec3f{1, 2, 3} : Vec3f{-8 + 16 * U(rng), -8 + 16 * U(rng), 0.1f + 5 * U(rng)};
+    const float intensity = std::pow(10.0f, 9 * U(rng) - 4);
+    s += "  - { type: point, position: [" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " +
+         std::to_string(p.z) + "], intensity: [" + std::to_string(intensity) + ", 1, 1] }\n";
+  }
+  SamplerHarness h(s, GetParam());
+  ASSERT_EQ(h.light_count(), 3500u);
+  for (int r = 0; r < 4; ++r) {
+    const nimbus_interaction_t ix =
+        receiver({-8 + 16 * U(rng), -8 + 16 * U(rng), 0}, normalize(Vec3f{U(rng) - 0.5f, U(rng) - 0.5f, 1}));
+    double sum = 0;
+    std::vector<float> pmf(h.light_count());
+    for (uint32_t l = 0; l < h.light_count(); ++l) sum += pmf[l] = h.pmf(ix, l);
+    EXPECT_NEAR(sum, 1.0, 1e-3) << "receiver " << r;
+    for (int i = 0; i < 20000; ++i) {
+      float p = 0;
+      const uint32_t l = h.pick(ix, U(rng), &p);
+      ASSERT_LT(l, h.light_count());
+      ASSERT_GT(p, 0.0f);
+      ASSERT_EQ(p, pmf[l]) << "pick's pmf must be pmf() exactly (light " << l << ")";
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Samplers, LightSamplerTest,
                          ::testing::Values("nimbus.lights.power", "nimbus.lights.tree"));
 
