@@ -5,7 +5,10 @@
   2. relMSE at equal time of nimbus.lights.tree against nimbus.lights.power, against a long reference
      (tree sampler), medians over seeds.
 
-    bench/many_lights.py [--seconds 30] [--reference-seconds 900] [--seeds 3] [--out docs/many-lights]
+    bench/many_lights.py [--seconds 30] [--reference-iterations 1024] [--seeds 3] [--out docs/many-lights]
+
+The reference is rendered once (kept in --out; delete it after changing the scene) for a fixed number of
+iterations, so that its quality does not depend on how busy the machine was.
 """
 import argparse
 import json
@@ -30,7 +33,7 @@ def render(nimbus, scene, out, seconds, seed, sampler):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--seconds", type=float, default=30)
-    ap.add_argument("--reference-seconds", type=float, default=900)
+    ap.add_argument("--reference-iterations", type=int, default=1024)
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--out", default="docs/many-lights")
     ap.add_argument("--nimbus", default="build/bin/nimbus")
@@ -40,18 +43,21 @@ def main():
     if not os.path.exists(many):
         run(["/usr/bin/python3", "scenes/generate_many_lights.py"])
 
-    cost = {}
-    for name, scene, sampler in (("one-light", one, "nimbus.lights.power"), ("many-lights", many, "nimbus.lights.tree")):
-        per = []
-        for s in range(a.seeds):
+    # The two scenes alternate, so that a slow moment of the machine weighs on both.
+    per = {"one-light": [], "many-lights": []}
+    for s in range(a.seeds):
+        for name, scene, sampler in (("one-light", one, "nimbus.lights.power"),
+                                     ("many-lights", many, "nimbus.lights.tree")):
             it, sec = render(a.nimbus, scene, os.path.join(a.out, f"cost-{name}.exr"), a.seconds, s + 1, sampler)
-            per.append(sec / it)
-        cost[name] = statistics.median(per)
+            per[name].append(sec / it)
+            print(f"{name} seed {s + 1}: {sec / it:.4g} s per iteration", flush=True)
+    cost = {name: statistics.median(v) for name, v in per.items()}
     ratio = cost["many-lights"] / cost["one-light"]
 
     ref = os.path.join(a.out, "many-lights-reference.exr")
     if not os.path.exists(ref):
-        render(a.nimbus, many, ref, a.reference_seconds, 1000, "nimbus.lights.tree")
+        run([a.nimbus, "render", many, "-o", ref, "--iterations", str(a.reference_iterations), "--seed", "1000",
+             "--light-sampler", "nimbus.lights.tree", "-q"])
     err = {}
     for sampler in ("nimbus.lights.power", "nimbus.lights.tree"):
         e = []

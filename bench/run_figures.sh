@@ -21,7 +21,7 @@ $PY bench/overhead.py scenes/caustics/*.yaml --iterations 32 --runs 5 --out docs
 fi
 if stage lights; then
 echo "== many lights"
-$PY bench/many_lights.py --seconds 10 --reference-seconds 300 --seeds 3 --out docs/many-lights
+$PY bench/many_lights.py --seconds 10 --reference-iterations 1024 --seeds 5 --out docs/many-lights
 fi
 if stage error; then
 echo "== error vs time"
