@@ -51,9 +51,12 @@ double EnvironmentLight::finish_build() {
 Rgb EnvironmentLight::lookup(const Vec3f &dir) const {
   if (uniform()) return color;
   const LatLong ll = to_latlong(dir, rotate_radians);
-  if (!bilinear) return texels[texel_of(*this, ll)].radiance;
+  return bilinear ? interpolate(ll.u, ll.v) : texels[texel_of(*this, ll)].radiance;
+}
+
+Rgb EnvironmentLight::interpolate(float u, float v) const {
   // Between the four nearest texel centres: wrapping around in azimuth, clamped at the poles.
-  const float fx = ll.u * float(width) - 0.5f, fy = ll.v * float(height) - 0.5f;
+  const float fx = u * float(width) - 0.5f, fy = v * float(height) - 0.5f;
   const float x0f = std::floor(fx), y0f = std::floor(fy), tx = fx - x0f, ty = fy - y0f;
   const uint32_t x0 = (uint32_t(int32_t(x0f) + int32_t(width))) % width, x1 = (x0 + 1) % width;
   const uint32_t y0 = uint32_t(std::max(y0f, 0.0f)),
@@ -70,17 +73,22 @@ float EnvironmentLight::pdf(const Vec3f &dir) const {
   return texels[texel_of(*this, ll)].pdf_uv / (2 * kPi * kPi * ll.sin_theta);
 }
 
-// Direction and solid-angle pdf for uniform numbers (u0, u1).
-Vec3f environment_sample(const EnvironmentLight &env, float u0, float u1, float &pdf) {
+// Direction, solid-angle pdf and radiance for uniform numbers (u0, u1). The radiance comes from the
+// sampled (u, v): no trip back through atan2, and the texel is the one whose density was drawn.
+Vec3f environment_sample(const EnvironmentLight &env, float u0, float u1, float &pdf, Rgb &radiance) {
   if (env.uniform()) {
     pdf = kUniformSpherePdf;
+    radiance = env.color;
     return sample_uniform_sphere(u0, u1);
   }
-  float u, v, pdf_uv;
-  env.distribution.sample(u0, u1, u, v, &pdf_uv);
+  float u, v;
+  size_t cell = 0;
+  env.distribution.sample(u0, u1, u, v, nullptr, &cell);
+  const EnvironmentLight::Texel &texel = env.texels[cell];
+  radiance = env.bilinear ? env.interpolate(u, v) : texel.radiance;
   const float theta = v * kPi, phi = u * 2 * kPi + env.rotate_radians;
   const float sin_theta = std::sin(theta);
-  pdf = sin_theta > 0 ? pdf_uv / (2 * kPi * kPi * sin_theta) : 0;
+  pdf = sin_theta > 0 ? texel.pdf_uv / (2 * kPi * kPi * sin_theta) : 0;
   return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), std::cos(theta)};
 }
 

@@ -7,7 +7,7 @@
 
 namespace nimbus {
 
-Vec3f environment_sample(const EnvironmentLight &env, float u0, float u1, float &pdf);
+Vec3f environment_sample(const EnvironmentLight &env, float u0, float u1, float &pdf, Rgb &radiance);
 
 namespace {
 
@@ -90,9 +90,10 @@ void light_sample_incident(const Light &light, const LightScene &scene, const ni
           },
           [&](const EnvironmentLight &l) {
             float pdf = 0;
-            const Vec3f wi = environment_sample(l, u[0], u[1], pdf);
+            Rgb radiance;
+            const Vec3f wi = environment_sample(l, u[0], u[1], pdf, radiance);
             if (!(pdf > 0)) return;
-            set_infinite_incident(scene, p, wi, l.lookup(wi), pdf, 0, out);
+            set_infinite_incident(scene, p, wi, radiance, pdf, 0, out);
           },
       },
       light.kind);
@@ -162,9 +163,10 @@ void light_sample_emission(const Light &light, const LightScene &scene, const fl
                  },
                  [&](const EnvironmentLight &l) {
                    float pdf = 0;
-                   const Vec3f w = environment_sample(l, u[2], u[3], pdf);
+                   Rgb radiance;
+                   const Vec3f w = environment_sample(l, u[2], u[3], pdf, radiance);
                    if (!(pdf > 0)) return;
-                   set_infinite_emission(scene, w, u[0], u[1], l.lookup(w), pdf, 0, out);
+                   set_infinite_emission(scene, w, u[0], u[1], radiance, pdf, 0, out);
                  },
              },
              light.kind);

@@ -71,6 +71,7 @@ struct EnvironmentLight {
   // integral of the luminance over the sphere.
   double finish_build();
   Rgb lookup(const Vec3f &dir) const;
+  Rgb interpolate(float u, float v) const;  // bilinear radiance at lat-long (u, v)
   float pdf(const Vec3f &dir) const;
 };
 
