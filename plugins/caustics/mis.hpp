@@ -40,7 +40,9 @@ inline constexpr uint32_t kPhotonMaxVertices = 32;
 // Pending camera-side merge terms: a term at x_s' can only be a technique for paths with
 // k - s' <= D_photon, so at most D_photon + 1 terms are alive at once.
 inline constexpr uint32_t kMaxCameraTerms = kPhotonMaxVertices + 1;
-// kappa: growth of the merge radius per rough camera vertex after the first (see above).
+// kappa: growth of the merge radius per rough camera vertex after the first (see above). 1: measured at
+// 6 s on 640x360, kappa = 2 and 4 did not lower sphere-point's error (its error is in first-vertex
+// merges) and halved / sixth-ed the pool's iterations (lookups behind the floor find 4-16x the photons).
 inline constexpr float kRadiusGrowth = 1.0f;
 
 // The MIS exponent beta = 2 applied to one factor.
