@@ -1,7 +1,7 @@
 // nimbus.caustics: the one-click caustics solver (Sik & Krivanek 2019; spec in
 // shared/design/caustics-solver.md). Camera paths are nimbus.pt's paths (PT + NEE + power-heuristic MIS,
 // throughput Russian roulette, the same random numbers); photon passes between camera passes store
-// photons after sharp bounces, and camera paths look them up at their first two rough vertices, with MIS
+// photons after sharp bounces, and camera paths look them up at their rough vertices, with MIS
 // weights that put merging and path tracing in one power-heuristic combination (mis.hpp). Without an
 // active photon map a camera pass runs the plain path tracer (zero-cost rule, spec 9).
 #include <nimbus/nimbus.hpp>
@@ -482,13 +482,13 @@ class CausticsSolver final : public sdk::Integrator {
   // Camera-side MIS state of one path (only with an active photon map).
   struct CameraState {
     CameraMis mis;
-    float a_r = 0;  // mis(pi r^2), 0 until the first rough vertex fixes r
-    float radius = 0;
+    float radius = 0;  // r_a: fixed at the first rough vertex (spec 3.5)
+    float r = 0;       // r_s of the current lookup vertex: r_a * kRadiusGrowth^(c_s - 1)
     float length = 0;  // path length from the lens to the current vertex
   };
 
   // nimbus.pt's camera path. With Map, the same path (same random numbers) also carries the MIS state,
-  // looks photons up at its first two rough vertices and weights hits and NEE against merging.
+  // looks photons up at its rough vertices and weights hits and NEE against merging.
   template <bool Map>
   void trace_pixel(const nimbus_thread_ctx_t &ctx, uint32_t x, uint32_t y, nimbus_rng_t &rng,
                    SampleRecord &rec) const {
@@ -557,7 +557,7 @@ class CausticsSolver final : public sdk::Integrator {
               nee_ratio = mis(light_pdf / prev_pdf);
             }
             const float lp = emitters_.lp(l, Vec3f::load(ix.ng), wo, Vec3f::load(prev.p));
-            const float w = hit_weight(nee_ratio, cam.a_r, cam.mis.s_cam(segments), lp);
+            const float w = hit_weight(nee_ratio, cam.mis.s_cam(segments), lp);
             rec.add(beta * Le * w, light_group_[l], segments, ids_, lp > 0 && cam.mis.eligible(segments));
           }
         }
@@ -576,9 +576,10 @@ class CausticsSolver final : public sdk::Integrator {
       if constexpr (Map) {
         const bool rough = !is_sharp(ix, lobes);
         lookup = cam.mis.append(rough);
-        if (lookup && cam.mis.rough_count == 1) {
-          cam.radius = merge_radius(theta_pix_, cam.length, map_pass_, scene_radius_);
-          cam.a_r = mis(kPi * cam.radius * cam.radius);
+        if (lookup) {
+          if (cam.mis.rough_count == 1)
+            cam.radius = merge_radius(theta_pix_, cam.length, map_pass_, scene_radius_);
+          cam.r = cam.mis.rough_count == 1 ? cam.radius : cam.r * kRadiusGrowth;
         }
         // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
         if (lookup && segments + 2 <= max_depth_) merge(ix, wo, beta, cam, segments, rec);
@@ -599,7 +600,7 @@ class CausticsSolver final : public sdk::Integrator {
       const Vec3f wi = Vec3f::load(bs.wi);
       if constexpr (Map)
         cam.mis.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup, segments,
-                        float(map_paths_));
+                        kPi * cam.r * cam.r * float(map_paths_));
       beta *= Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(ix.ns))) / bs.pdf);
       if (is_black(beta) || !is_finite(beta)) break;
       specular = (bs.lobe & NIMBUS_LOBE_SPECULAR) != 0;
@@ -644,7 +645,7 @@ class CausticsSolver final : public sdk::Integrator {
           nee_ratio = mis(light_pdf / prev_pdf);
         }
         const float lp = emitters_.lp(l, Vec3f(), -dir, Vec3f::load(prev.p));
-        const float w = hit_weight(nee_ratio, cam.a_r, cam.mis.s_cam(segments), lp);
+        const float w = hit_weight(nee_ratio, cam.mis.s_cam(segments), lp);
         rec.add(beta * Le * w, light_group_[l], segments, ids_, lp > 0 && cam.mis.eligible(segments));
       }
     }
@@ -694,8 +695,7 @@ class CausticsSolver final : public sdk::Integrator {
       float nk = pmf;  // delta lights
       if (!delta) nk = infinite ? light_pdf : light_pdf * std::abs(dot(Vec3f::load(ls.n), wi)) / d2;
       (void)em;
-      const float w =
-          nee_weight(hit_ratio, cam.a_r, bsdf_pdf_rev, cam.mis.s_cam(segments), lp, cos_j / d2, nk);
+      const float w = nee_weight(hit_ratio, bsdf_pdf_rev, cam.mis.s_cam(segments), lp, cos_j / d2, nk);
       rec.add(beta * contrib * Li * (w / light_pdf), light_group_[light], segments, ids_,
               lp > 0 && cam.mis.eligible(segments));
     }
@@ -705,11 +705,10 @@ class CausticsSolver final : public sdk::Integrator {
   __attribute__((noinline)) void merge(const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta,
                                        const CameraState &cam, uint32_t s, SampleRecord &rec) const {
     const nimbus_host_t *h = host().get();
-    const float r = cam.radius, r2 = r * r;
+    const float r = cam.r, r2 = r * r;
     const float neff = float(map_paths_);
     const float inv_paths = 1.0f / neff;
-    const float m_neff = mis(neff), a_r_neff = mis(kPi * r2 * neff);
-    const bool first_rough = cam.mis.rough_count == 1;
+    const float m_neff = mis(neff), eta = mis(kPi * r2 * neff);
     const Vec3f ng = Vec3f::load(ix.ng);
     float wo_arr[3];
     wo.store(wo_arr);
@@ -727,8 +726,8 @@ class CausticsSolver final : public sdk::Integrator {
       bsdf_->eval(h, &ix, wo_arr, wp_arr, NIMBUS_MODE_RADIANCE, f, &pdf_fwd, &pdf_rev);
       const Rgb fr = Rgb::load(f);
       if (is_black(fr)) return;
-      const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, a_r_neff,
-                                   m_neff, m_neff, first_rough, cam.mis.gamma_sum(k));
+      const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
+                                   m_neff, cam.mis.gamma_sum(k));
       const float kernel = kernel_norm * (1 - d2 / r2);
       const Rgb c = fr * Rgb::load(ph.power) * (w * kernel);
       if (!is_finite(c) || is_black(c)) return;

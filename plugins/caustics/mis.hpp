@@ -1,8 +1,19 @@
 // MIS between path tracing (BSDF hit H, next-event estimation N) and photon merging at camera vertex
 // x_s (M_s), evaluated iteratively as in the solver spec (shared/design/caustics-solver.md, section 3.3):
-// the photon side carries A (light-side techniques: H, N and merges further towards the light would
-// need more than one rough camera vertex, so only H and N) and B (the one merge at the next rough photon
-// vertex), the camera side a list of at most two pending merge terms R.
+// the photon side carries A (light-side techniques H and N) and B (the merges at the rough photon
+// vertices further towards the light), the camera side a list of pending merge terms R (one per earlier
+// rough camera vertex that can still be a merge technique).
+//
+// Lookups happen at every rough camera vertex (spec 3.2 E2 with n_max unlimited, the paper's VCM
+// choice): with lookups at the first two only, paths with three or more rough vertices in front of a
+// caustic (e.g. pool floor -> wall -> floor -> water -> sun) had no merge technique at all and came from
+// rare BSDF hits of the sun alone, fireflies of radiance ~4e4.
+//
+// Merge radius: r_s = r_a * kappa^(c_s - 1) with r_a the path's first-rough-vertex radius (spec 3.5) and
+// c_s the number of rough vertices among x_1 .. x_s: lookups behind a diffuse bounce see light that the
+// bounce blurs anyway and use a wider kernel. r_s is a function of the camera prefix, and the photon
+// side can evaluate r_s' / r_s for its own merges (kappa per rough vertex between s and s'), so the
+// weights stay a partition of unity.
 //
 // Every quantity here is already raised to the MIS exponent: mis(x) = x^beta with beta = 2, the power
 // heuristic of nimbus.pt, so that paths without an eligible merge get exactly nimbus.pt's weights.
@@ -26,17 +37,26 @@ namespace nimbus::caustics {
 inline constexpr float kSharpAlpha = 0.1f;
 // D_photon: most vertices a photon path may have (x_{k-1} ... x_s).
 inline constexpr uint32_t kPhotonMaxVertices = 32;
-// Lookups (and merge techniques) at the first n_max + 1 = 2 rough camera vertices.
-inline constexpr uint32_t kLookupRoughVertices = 2;
+// Pending camera-side merge terms: a term at x_s' can only be a technique for paths with
+// k - s' <= D_photon, so at most D_photon + 1 terms are alive at once.
+inline constexpr uint32_t kMaxCameraTerms = kPhotonMaxVertices + 1;
+// kappa: growth of the merge radius per rough camera vertex after the first (see above). 1: measured at
+// 6 s on 640x360, kappa = 2 and 4 did not lower sphere-point's error (its error is in first-vertex
+// merges) and halved / sixth-ed the pool's iterations (lookups behind the floor find 4-16x the photons).
+inline constexpr float kRadiusGrowth = 1.0f;
 
 // The MIS exponent beta = 2 applied to one factor.
 inline float mis(float x) { return x * x; }
 
+// mis((r_s' / r_s)^2) per rough vertex between two merge vertices: what the photon side multiplies B by.
+inline float radius_growth_mis(float kappa = kRadiusGrowth) { return mis(kappa * kappa); }
+
 // Photon-side state of one photon path (spec 3.3, "photon side").
 struct PhotonMis {
   float A = 0;           // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
-  float B = 0;           // q_M,s' / q_M,s for the last stored rough vertex s', over the same factors
-  bool b_valid = false;  // B refers to a stored rough vertex followed only by sharp vertices
+  float B = 0;           // sum over the stored rough vertices s' further towards the light of
+                         // q_M,s' / q_M,s, over the same factors except the radius ratio (included)
+  bool b_valid = false;  // some stored rough vertex precedes (B is a sum of >= 1 terms)
 
   // Emission. hittable: BSDF sampling can hit the emitter (area and non-delta infinite lights).
   // cos_e: |cos| at the emitter between its normal and the photon direction (1 for infinite lights).
@@ -53,13 +73,16 @@ struct PhotonMis {
   }
   // Scattering at the current vertex: c_out = |cos| of the new direction, w_fwd its pdf, w_rev the pdf
   // of the reverse direction (what a camera path would use). E: NEE term of the first vertex (below), 0
-  // elsewhere. rough / stored: the vertex's class and whether a photon was stored at it.
-  void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, float E) {
+  // elsewhere. rough / stored: the vertex's class and whether a photon was stored at it (then the merge
+  // there is a technique for every longer path through it). growth: radius_growth_mis(): a rough vertex
+  // adds one rough camera vertex in front of every merge further towards the light.
+  void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, float E,
+               float growth = radius_growth_mis()) {
     const float g = mis(c_out / w_fwd);
     A = g * (mis(w_rev) * A + E);
     if (rough) {
-      B = stored ? g : 0.0f;
-      b_valid = stored;
+      B = g * growth * (mis(w_rev) * B + (stored ? 1.0f : 0.0f));
+      b_valid = b_valid || stored;
     } else {
       B = g * mis(w_rev) * B;
     }
@@ -85,7 +108,7 @@ struct CameraTerm {
 
 // Camera-side state of one camera path (spec 3.3, "camera side").
 struct CameraMis {
-  CameraTerm terms[kLookupRoughVertices];
+  CameraTerm terms[kMaxCameraTerms];
   uint32_t n_terms = 0;
   uint32_t rough_count = 0;                // rough vertices among x_1 .. x_j (after append)
   uint32_t d_photon = kPhotonMaxVertices;  // the photon tracer's D_photon (tests vary it)
@@ -96,7 +119,7 @@ struct CameraMis {
     for (uint32_t i = 0; i < n_terms; ++i) terms[i].R /= m;
   }
   // Appends the class of the scattering vertex just reached. Returns true when it is a lookup vertex
-  // (rough and among the first kLookupRoughVertices rough ones: E1 + E2).
+  // (rough: E1 + E2, lookups at every rough vertex).
   bool append(bool rough) {
     for (uint32_t i = 0; i < n_terms; ++i) {
       CameraTerm &t = terms[i];
@@ -111,15 +134,23 @@ struct CameraMis {
     }
     if (!rough) return false;
     ++rough_count;
-    return rough_count <= kLookupRoughVertices;
+    return true;
   }
   // Scattering at x_j: c_out, w_fwd, w_rev as in PhotonMis::scatter. lookup: x_j is a lookup vertex
-  // (then a new term starts with Neff(x_j) * rho(x_j), neff_rho).
-  void scatter(float c_out, float w_fwd, float w_rev, bool lookup, uint32_t j, float neff_rho) {
+  // (then a new term starts with eta_j = pi r_j^2 * Neff(x_j) * rho(x_j)). Terms that can no longer be
+  // merge techniques (dead, or too far from any later emitter for D_photon) are dropped first.
+  void scatter(float c_out, float w_fwd, float w_rev, bool lookup, uint32_t j, float eta) {
     const float g = mis(c_out / w_fwd);
     const float r = mis(w_rev);
-    for (uint32_t i = 0; i < n_terms; ++i) terms[i].R *= g * r;
-    if (lookup && n_terms < kLookupRoughVertices) terms[n_terms++] = CameraTerm{g * mis(neff_rho), j};
+    uint32_t n = 0;
+    for (uint32_t i = 0; i < n_terms; ++i) {
+      CameraTerm t = terms[i];
+      if (t.dead || j + 1 - t.s > d_photon) continue;  // later paths have k >= j + 1
+      t.R *= g * r;
+      terms[n++] = t;
+    }
+    n_terms = n;
+    if (lookup && n_terms < kMaxCameraTerms) terms[n_terms++] = CameraTerm{g * mis(eta), j};
   }
   // S_cam: sum of R over the merge techniques eligible for a path of k segments that ends here (an
   // emitter hit at x_k, or NEE from x_{k-1}): E3 on the camera vertices after s.
@@ -160,35 +191,34 @@ inline float mis_weight(float others) {
 // Weight of NEE from x_j to an emitter point (spec 3.3).
 //   hit_ratio:  q_H / q_N  = mis(omega^C_j(-> z) / n_omega) for hittable emitters (area, infinite
 //               non-delta), 0 for delta lights (computed by the caller: it is nimbus.pt's ratio)
-//   a_r:        mis(pi r^2) of this camera path, 0 when no photon map is active
 //   w_rev:      omega^L_j(z ->): pdf of scattering from the light's direction back to x_{j-1}
 //   s_cam:      CameraMis::s_cam(j + 1) after appending x_j
 //   lp, g, nk:  emitter product, receiver geometry (cos_j / d^2, or cos_j), NEE area density
-inline float nee_weight(float hit_ratio, float a_r, float w_rev, float s_cam, float lp, float g, float nk) {
+inline float nee_weight(float hit_ratio, float w_rev, float s_cam, float lp, float g, float nk) {
   float merges = 0;
-  if (a_r > 0 && s_cam > 0 && lp > 0) merges = a_r * mis(w_rev) * s_cam * mis(lp * g / nk);
+  if (s_cam > 0 && lp > 0) merges = mis(w_rev) * s_cam * mis(lp * g / nk);
   return mis_weight(hit_ratio + merges);
 }
 
 // Weight of a BSDF-sampled emitter hit. nee_ratio = q_N / q_H (nimbus.pt's ratio; 0 when NEE could not
 // have sampled it); s_cam after arrival (finite emitters) or after the scatter (infinite ones).
-inline float hit_weight(float nee_ratio, float a_r, float s_cam, float lp) {
+inline float hit_weight(float nee_ratio, float s_cam, float lp) {
   float merges = 0;
-  if (a_r > 0 && s_cam > 0 && lp > 0) merges = a_r * s_cam * mis(lp);
+  if (s_cam > 0 && lp > 0) merges = s_cam * mis(lp);
   return mis_weight(nee_ratio + merges);
 }
 
 // Weight of merging photon (A, B, b_valid, prev_rough, depth) at lookup vertex x_s.
 //   w_cam_fwd:  omega^C_s(w_p): pdf that the camera path at x_s samples the photon's incoming direction
 //   w_cam_rev:  omega^L_s(w_p -> x_{s-1}): the reverse pdf of the same pair
-//   a_r_neff:   mis(pi r^2 * Neff_s * rho_s); neff: mis(Neff_s * rho_s); neff_b: mis(Neff at B's vertex)
-//   first_rough: x_s is the first rough camera vertex (c_s = 1)
-//   gamma_sum:  CameraMis::gamma_sum(s + depth)
+//   eta:        mis(pi r_s^2 * Neff_s * rho_s); neff: mis(Neff_s * rho_s); neff_b: mis(Neff at B's
+//               vertices) (v1: Neff is the same everywhere)
+//   gamma_sum:  CameraMis::gamma_sum(s + depth) (its terms carry their own eta)
 inline float merge_weight(float A, float B, bool b_valid, bool prev_rough, float w_cam_fwd, float w_cam_rev,
-                          float a_r_neff, float neff, float neff_b, bool first_rough, float gamma_sum) {
-  float light = A / a_r_neff;
-  if (first_rough && b_valid) light += B * neff_b / neff;
-  const float others = mis(w_cam_fwd) * light + (prev_rough ? 0.0f : mis(w_cam_rev) * gamma_sum / neff);
+                          float eta, float neff, float neff_b, float gamma_sum) {
+  float light = A / eta;
+  if (b_valid) light += B * neff_b / neff;
+  const float others = mis(w_cam_fwd) * light + (prev_rough ? 0.0f : mis(w_cam_rev) * gamma_sum / eta);
   return mis_weight(others);
 }
 

@@ -36,10 +36,13 @@ struct ScheduleConfig {
   // photon pass.
   double photon_paths_per_camera_path = 0.5;
   uint64_t probe = uint64_t(1) << 16;  // the first pass
-  // N_min never below this. Small caustics (a useful-pixel ratio near 0) get N_min paths per pass, so
-  // the floor sets their photon density: at 4,096 the sphere-area scene's error at equal time was 3x
-  // that at ~12,000 (docs/performance.md), for a per-iteration cost of a few percent either way.
-  uint64_t min_floor = 16384;
+  // N_min never below this: the spec's N_min = 2^22 / 64 = 2^16 (section 5), kept when the cap above
+  // lowers N_max (N_min = N_max / 64 of the capped N_max was 1,800 at 640x360). Small caustics (a
+  // useful-pixel ratio near 0) get N_min paths per pass, so the floor sets their photon density; without
+  // photon guiding most of those paths miss the caustic-forming objects. Equal-time relMSE at 6 s,
+  // 640x360, 2^16 against 2^14 (docs/performance.md): sphere-point, sphere-area, glasses, ring 1.9-2.6x
+  // lower, pool 1.2x lower; per-iteration overhead +3 to +14 points on the scenes at the floor.
+  uint64_t min_floor = 65536;
   uint64_t camera_paths = 1;  // camera paths per iteration (the render region's pixels)
 
   uint64_t effective_max() const {

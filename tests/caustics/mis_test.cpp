@@ -29,7 +29,8 @@ struct SyntheticPath {
   double lp = 1;              // emitter product (0: the light emits no such photon)
   double n_omega = 1;         // NEE solid-angle density incl. selection (area, infinite)
   double pmf = 1;             // NEE selection (delta lights)
-  double area = 1, neff = 1;  // pi r^2 and the photon path count
+  double area = 1, neff = 1;  // pi r_a^2 (first rough vertex) and the photon path count
+  double kappa = 1;           // radius growth per rough vertex: r_s = r_a kappa^(c_s - 1)
   uint32_t d_photon = kPhotonMaxVertices;
 
   bool finite() const { return light == LightKind::Area || light == LightKind::Point; }
@@ -84,6 +85,9 @@ SyntheticPath random_path(std::mt19937_64 &g) {
   p.pmf = log_uniform(g, 1e-3, 1);
   p.area = log_uniform(g, 1e-3, 1e3);
   p.neff = log_uniform(g, 1, 1e6);
+  // The production constant, and random growth factors so the radius-ratio bookkeeping is exercised.
+  p.kappa =
+      std::uniform_real_distribution<double>(0, 1)(g) < 0.3 ? double(kRadiusGrowth) : log_uniform(g, 1, 4);
   p.d_photon = std::uniform_real_distribution<double>(0, 1)(g) < 0.3
                    ? std::uniform_int_distribution<uint32_t>(2, 6)(g)
                    : kPhotonMaxVertices;
@@ -101,12 +105,21 @@ struct ClosedForm {
   }
 };
 
-// The merge at s is a technique (E1-E4 with n_max = 1).
+// Rough vertices among x_1 .. x_s.
+uint32_t rough_count(const SyntheticPath &p, uint32_t s) {
+  uint32_t c = 0;
+  for (uint32_t j = 1; j <= s; ++j) c += p.rough(j);
+  return c;
+}
+
+// pi r_s^2 at lookup vertex x_s.
+double area_at(const SyntheticPath &p, uint32_t s) {
+  return p.area * std::pow(p.kappa, 2.0 * (double(rough_count(p, s)) - 1));
+}
+
+// The merge at s is a technique (E1-E4; lookups at every rough vertex).
 bool merge_eligible(const SyntheticPath &p, uint32_t s) {
   if (!(p.lp > 0) || s < 1 || s + 2 > p.k || !p.rough(s)) return false;
-  uint32_t rough_before = 0;
-  for (uint32_t j = 1; j < s; ++j) rough_before += p.rough(j);
-  if (rough_before > 1) return false;
   bool sharp = false;
   for (uint32_t j = s + 1; j < p.k; ++j) {
     sharp = sharp || !p.rough(j);
@@ -131,7 +144,7 @@ ClosedForm closed_form(const SyntheticPath &p) {
   f.qm.assign(k + 1, 0);
   for (uint32_t s = 1; s < k; ++s) {
     if (!merge_eligible(p, s)) continue;
-    double q = p.area * p.neff;
+    double q = area_at(p, s) * p.neff;
     for (uint32_t j = 2; j <= s; ++j) q *= C[j];
     for (uint32_t j = s; j + 2 <= k; ++j) q *= L[j];
     f.qm[s] = q * light_pair;
@@ -174,7 +187,8 @@ Weights production(const SyntheticPath &p) {
     const bool stored = rough && had_sharp && (k - j) <= p.d_photon;
     at[j] = PhotonAt{stored, pm.A, pm.B, pm.b_valid, prev_rough};
     if (rough && prev_rough) break;
-    pm.scatter(float(p.cos_prev[j]), float(p.w_light[j]), float(p.w_cam[j]), rough, stored, E);
+    pm.scatter(float(p.cos_prev[j]), float(p.w_light[j]), float(p.w_cam[j]), rough, stored, E,
+               radius_growth_mis(float(p.kappa)));
     prev_rough = rough;
     had_sharp = had_sharp || !rough;
   }
@@ -184,33 +198,33 @@ Weights production(const SyntheticPath &p) {
   w.merged.assign(k + 1, false);
   CameraMis cm;
   cm.d_photon = p.d_photon;
-  const float a_r = mis(float(p.area));
+  float area = 0;  // pi r_j^2 of the current lookup vertex
   const float neff = float(p.neff);
   for (uint32_t j = 1; j <= k; ++j) {
     if (j >= 2 && !(j == k && !p.finite())) cm.arrive(j == k ? float(p.cos_prev[k]) : float(p.cos_prev[j]));
     if (j == k) {
       if (p.hittable()) {
         const float nee_ratio = p.delta(k - 1) ? 0.0f : mis(float(p.n_omega / p.w_cam[k - 1]));
-        w.wh = hit_weight(nee_ratio, a_r, cm.s_cam(k), lp);
+        w.wh = hit_weight(nee_ratio, cm.s_cam(k), lp);
         w.hit = true;
       }
       break;
     }
     const bool lookup = cm.append(p.rough(j));
+    // The plugin's radius: r_a at the first rough vertex, times kappa at each further one.
+    if (lookup) area = cm.rough_count == 1 ? float(p.area) : area * float(p.kappa * p.kappa);
     if (lookup && at[j].stored && p.lp > 0) {
       const PhotonAt &ph = at[j];
-      w.wm[j] =
-          merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
-                       mis(float(p.area) * neff), mis(neff), mis(neff), cm.rough_count == 1, cm.gamma_sum(k));
+      w.wm[j] = merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
+                             mis(area * neff), mis(neff), mis(neff), cm.gamma_sum(k));
       w.merged[j] = true;
     }
     if (j == k - 1 && !p.delta(j)) {
       const float hit_ratio = p.hittable() ? mis(float(p.w_cam[j] / p.n_omega)) : 0.0f;
-      w.wn =
-          nee_weight(hit_ratio, a_r, float(p.w_light[j]), cm.s_cam(k), lp, float(p.g_last()), float(p.nk()));
+      w.wn = nee_weight(hit_ratio, float(p.w_light[j]), cm.s_cam(k), lp, float(p.g_last()), float(p.nk()));
       w.nee = true;
     }
-    cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, neff);
+    cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, area * neff);
   }
   return w;
 }
@@ -261,19 +275,46 @@ TEST(CausticsMis, WeightsMatchClosedFormAndSumToOne) {
   EXPECT_GT(long_chains, 500);
 }
 
-// Without a photon map (a_r = 0) the hit and NEE weights are nimbus.pt's power heuristic.
+// Without merge terms (no photon map) the hit and NEE weights are nimbus.pt's power heuristic.
 TEST(CausticsMis, NoMapGivesPathTracerWeights) {
   std::mt19937_64 g(7);
   for (int n = 0; n < 10000; ++n) {
     const float bsdf = float(log_uniform(g, 1e-3, 1e3)), light = float(log_uniform(g, 1e-3, 1e3));
     CameraMis cm;
-    const float wh = hit_weight(mis(light / bsdf), 0.0f, cm.s_cam(3), 1.0f);
-    const float wn = nee_weight(mis(bsdf / light), 0.0f, 1.0f, cm.s_cam(3), 1.0f, 1.0f, light);
+    const float wh = hit_weight(mis(light / bsdf), cm.s_cam(3), 1.0f);
+    const float wn = nee_weight(mis(bsdf / light), 1.0f, cm.s_cam(3), 1.0f, 1.0f, light);
     const float ph = bsdf * bsdf / (bsdf * bsdf + light * light),
                 pn = light * light / (bsdf * bsdf + light * light);
     EXPECT_NEAR(wh, ph, 1e-6f * std::max(ph, 1e-6f) + 1e-7f);
     EXPECT_NEAR(wn, pn, 1e-6f * std::max(pn, 1e-6f) + 1e-7f);
   }
+}
+
+// The pool's fireflies: camera -> water (delta) -> floor -> wall -> floor -> wall -> water (delta) -> sun.
+// With lookups at the first two rough vertices only, both merge terms were dead (two adjacent rough
+// vertices after them) and the BSDF hit of the sun (radiance ~4e4) had weight 1. With lookups at every
+// rough vertex the merge at the last rough vertex exists and takes almost all the weight. Numbers from
+// the pool at 640x360: r ~ 7 mm, ~1e5 photon paths per pass, sun lp = P_sel P_pos P_dir ~ 866.
+TEST(CausticsMis, SunThroughWaterAfterSeveralDiffuseBouncesHasAMergeTechnique) {
+  const float eta = 3.14159265f * 0.007f * 0.007f * 1e5f, lp = 866.0f;
+  const float diffuse_pdf = 0.25f, cos_ = 0.8f;
+  CameraMis cm;
+  float r = 0;  // radius bookkeeping as the plugin does
+  const bool rough[] = {false, true, true, true, true, false};
+  uint32_t lookups = 0;
+  for (uint32_t j = 1; j <= 6; ++j) {
+    if (j >= 2) cm.arrive(cos_);
+    const bool lookup = cm.append(rough[j - 1]);
+    lookups += lookup;
+    if (lookup) r = cm.rough_count == 1 ? 1.0f : r * kRadiusGrowth;
+    const bool delta = !rough[j - 1];
+    cm.scatter(cos_, delta ? 1.0f : diffuse_pdf, delta ? 1.0f : diffuse_pdf, lookup, j, eta * r * r);
+  }
+  EXPECT_EQ(lookups, 4u);
+  // The sun is reached after 7 segments: the merge at x_5 (last rough vertex) is eligible.
+  EXPECT_TRUE(cm.eligible(7));
+  const float w = hit_weight(0.0f, cm.s_cam(7), lp);
+  EXPECT_LT(w, 1e-6f);
 }
 
 }  // namespace

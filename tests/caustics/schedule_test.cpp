@@ -31,21 +31,26 @@ ScheduleConfig config(uint64_t camera_paths) {
   ScheduleConfig c;
   c.n_max = 1 << 20;
   c.photon_paths_per_camera_path = 0;  // no cap: N_min = N_max / 64
+  c.min_floor = 1;                     // the schedule's logic, not the floor (tested above)
   c.probe = 1 << 16;
   c.camera_paths = camera_paths;
   return c;
 }
 
 // The cap: a pass holds at most half a camera pass's worth of photon paths (default); N_min = N_max / 64
-// (floored at 16384).
+// (floored at 2^16, the spec's N_min).
 TEST(CausticsSchedule, MapSizeCappedByCameraPasses) {
   ScheduleConfig c;
   c.n_max = 1 << 22;
   c.camera_paths = 1280 * 720;
   EXPECT_EQ(c.effective_max(), 1280u * 720 / 2);
-  EXPECT_EQ(c.effective_min(), 16384u);  // the floor: 1280 * 720 / 2 / 64 is below it
+  EXPECT_EQ(c.effective_min(), 65536u);  // the floor: 1280 * 720 / 2 / 64 is below it
   c.camera_paths = 4096 * 4096;
   EXPECT_EQ(c.effective_min(), (1u << 22) / 64);
+  c.n_max = 1 << 24;  // a larger N_max (here the cap, 4096^2 / 2): N_min = N_max / 64 above the floor
+  EXPECT_EQ(c.effective_max(), 4096u * 4096 / 2);
+  EXPECT_EQ(c.effective_min(), 4096u * 4096 / 2 / 64);
+  c.n_max = 1 << 22;
   c.camera_paths = 10000 * 10000;
   EXPECT_EQ(c.effective_max(), 1u << 22);
   c.photon_paths_per_camera_path = 4;
