@@ -24,9 +24,9 @@ def meta(exr):
     return float(m["nimbus:iterations"]), float(m["nimbus:seconds"])
 
 
-def render(nimbus, scene, out, seconds, seed, sampler):
-    run([nimbus, "render", scene, "-o", out, "--time", str(seconds), "--seed", str(seed), "--light-sampler", sampler,
-         "-q"])
+def render(nimbus, scene, out, stop, seed, sampler):
+    """stop: the stopping rule, e.g. ["--time", "10"] or ["--iterations", "1024"]."""
+    run([nimbus, "render", scene, "-o", out, *stop, "--seed", str(seed), "--light-sampler", sampler, "-q"])
     return meta(out)
 
 
@@ -48,7 +48,8 @@ def main():
     for s in range(a.seeds):
         for name, scene, sampler in (("one-light", one, "nimbus.lights.power"),
                                      ("many-lights", many, "nimbus.lights.tree")):
-            it, sec = render(a.nimbus, scene, os.path.join(a.out, f"cost-{name}.exr"), a.seconds, s + 1, sampler)
+            it, sec = render(a.nimbus, scene, os.path.join(a.out, f"cost-{name}.exr"), ["--time", str(a.seconds)], s + 1,
+                             sampler)
             per[name].append(sec / it)
             print(f"{name} seed {s + 1}: {sec / it:.4g} s per iteration", flush=True)
     cost = {name: statistics.median(v) for name, v in per.items()}
@@ -56,14 +57,13 @@ def main():
 
     ref = os.path.join(a.out, "many-lights-reference.exr")
     if not os.path.exists(ref):
-        run([a.nimbus, "render", many, "-o", ref, "--iterations", str(a.reference_iterations), "--seed", "1000",
-             "--light-sampler", "nimbus.lights.tree", "-q"])
+        render(a.nimbus, many, ref, ["--iterations", str(a.reference_iterations)], 1000, "nimbus.lights.tree")
     err = {}
     for sampler in ("nimbus.lights.power", "nimbus.lights.tree"):
         e = []
         for s in range(a.seeds):
             out = os.path.join(a.out, f"equal-time-{sampler}-{s + 1}.exr")
-            render(a.nimbus, many, out, a.seconds, s + 1, sampler)
+            render(a.nimbus, many, out, ["--time", str(a.seconds)], s + 1, sampler)
             e.append(json.loads(run([a.nimbus, "compare", out, ref, "--json"]))["relmse"])
         err[sampler] = statistics.median(e)
 

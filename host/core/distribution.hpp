@@ -19,10 +19,13 @@ namespace detail {
 inline double build_cdf(std::span<const float> f, float *cdf) {
   const size_t n = f.size();
   double sum = 0;
+  for (float x : f) sum += double(std::max(x, 0.0f));
+  double running = 0;  // in double: float sums of thousands of texels lose the small ones
   cdf[0] = 0;
-  std::vector<double> acc(n + 1, 0.0);
-  for (size_t i = 0; i < n; ++i) acc[i + 1] = sum += double(std::max(f[i], 0.0f));
-  for (size_t i = 1; i <= n; ++i) cdf[i] = sum > 0 ? float(acc[i] / sum) : float(double(i) / double(n));
+  for (size_t i = 0; i < n; ++i) {
+    running += double(std::max(f[i], 0.0f));
+    cdf[i + 1] = sum > 0 ? float(running / sum) : float(double(i + 1) / double(n));
+  }
   cdf[n] = 1;
   return sum / double(n);
 }

@@ -89,8 +89,7 @@ class LightTree final : public sdk::LightSampler {
     uint32_t node = 0;
     for (;;) {
       float imp[WideNode::kWidth];
-      nodes_[node].importance(p, n, imp);
-      const float sum = (imp[0] + imp[1]) + (imp[2] + imp[3]);
+      const float sum = importances(node, p, n, imp);
       if (!(sum > 0)) return NIMBUS_NONE;
       // The lane whose share of [0, sum) holds u * sum; never a zero-importance lane.
       int last = WideNode::kWidth - 1;
@@ -123,8 +122,7 @@ class LightTree final : public sdk::LightSampler {
     while (depth > 0) {
       const Slot at = path[--depth];
       float imp[WideNode::kWidth];
-      nodes_[at.node].importance(p, n, imp);
-      const float sum = (imp[0] + imp[1]) + (imp[2] + imp[3]);
+      const float sum = importances(at.node, p, n, imp);
       if (!(sum > 0) || !(imp[at.lane] > 0)) return 0;
       prob *= imp[at.lane] / sum;
     }
@@ -137,6 +135,13 @@ class LightTree final : public sdk::LightSampler {
   }
 
  private:
+  // The four lanes' importances at a node and their sum, summed the same way for pick() and pmf() so that
+  // both report bit-identical probabilities.
+  float importances(uint32_t node, const Vec3f &p, const Vec3f &n, float imp[WideNode::kWidth]) const {
+    nodes_[node].importance(p, n, imp);
+    return (imp[0] + imp[1]) + (imp[2] + imp[3]);
+  }
+
   // Builds the binary subtree of lights [begin, end) depth first and returns its node index.
   uint32_t build(std::vector<std::pair<uint32_t, LightBounds>> &lights, size_t begin, size_t end, int depth,
                  std::vector<BinaryNode> &binary) {
