@@ -32,12 +32,20 @@ inline Vec3f sample_uniform_sphere(float u0, float u1) {
 }
 inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
 
+// Uniform direction in the cone around +z whose half angle theta_max has 1 - cos(theta_max) =
+// one_minus_cos. Taking 1 - cos rather than cos keeps narrow cones (a small target seen from far away,
+// where cos rounds to 1 in float) exact: sin(theta) comes from t (2 - t), not from 1 - cos^2.
+inline Vec3f sample_uniform_cone_narrow(float u0, float u1, float one_minus_cos) {
+  const float t = u0 * one_minus_cos;  // 1 - cos(theta), uniform in [0, one_minus_cos)
+  const float sin_theta = safe_sqrt(t * (2.0f - t));
+  const float phi = u1 * 2.0f * kPi;
+  return {std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, 1.0f - t};
+}
+inline float uniform_cone_pdf_narrow(float one_minus_cos) { return 1.0f / (2.0f * kPi * one_minus_cos); }
+
 // Uniform direction in the cone around +z with the given cos of its half angle.
 inline Vec3f sample_uniform_cone(float u0, float u1, float cos_theta_max) {
-  const float cos_theta = (1.0f - u0) + u0 * cos_theta_max;
-  const float sin_theta = safe_sqrt(1.0f - cos_theta * cos_theta);
-  const float phi = u1 * 2.0f * kPi;
-  return {std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, cos_theta};
+  return sample_uniform_cone_narrow(u0, u1, 1.0f - cos_theta_max);
 }
 inline float uniform_cone_pdf(float cos_theta_max) { return 1.0f / (2.0f * kPi * (1.0f - cos_theta_max)); }
 

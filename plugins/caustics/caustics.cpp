@@ -140,8 +140,8 @@ class CausticsSolver final : public sdk::Integrator {
     map_ = PhotonKdTree();
     map_active_ = false;
     emitter_pdfs_known_ = false;
-    next_disk_ = {};
-    emitters_.set_disk(scene_center_, scene_radius_);
+    next_target_ = {};
+    emitters_.set_target(scene_center_, scene_radius_);
     stats_ = {};
     return NIMBUS_OK;
   }
@@ -269,7 +269,8 @@ class CausticsSolver final : public sdk::Integrator {
     const nimbus_host_t *h = host().get();
     learn_emitter_pdfs();
     const uint32_t pass = schedule_.passes() + 1;
-    if (next_disk_.radius > 0) emitters_.set_disk(next_disk_.center, next_disk_.radius), next_disk_ = {};
+    if (next_target_.radius > 0)
+      emitters_.set_target(next_target_.center, next_target_.radius), next_target_ = {};
     const uint64_t tasks = (paths + kPhotonPathsPerTask - 1) / kPhotonPathsPerTask;
     std::vector<PhotonChunk> chunks(tasks);
     struct Job {
@@ -299,13 +300,14 @@ class CausticsSolver final : public sdk::Integrator {
       total += c.photons.size(), done += c.paths, sharp |= c.saw_sharp;
       sharp_lo = min(sharp_lo, c.sharp_lo), sharp_hi = max(sharp_hi, c.sharp_hi);
     }
-    // After the probe, infinite lights emit from a disk around the sharp surfaces only (spec 6.2): in a
-    // large scene most of the scene's disk sends photons past every caustic-forming surface. The probe's
-    // own map keeps the scene's disk (camera-side MIS must use the disk its photons came from), so the
-    // new disk takes effect with the next pass.
+    // After the probe, photons aim at the bounding sphere of the sharp surfaces only (spec 6.2's
+    // emission disk for infinite lights, cones for finite ones; emitters.hpp): most of a light's photons
+    // would otherwise pass every caustic-forming surface. The probe's own map keeps the scene's target
+    // (camera-side MIS must use the densities its photons came from), so the new target takes effect
+    // with the next pass.
     if (pass == 1 && sharp) {
       const float radius = 0.5f * length(sharp_hi - sharp_lo) * 1.05f + 1e-4f * scene_radius_;
-      if (radius < scene_radius_) next_disk_ = {(sharp_lo + sharp_hi) * 0.5f, radius};
+      if (radius < scene_radius_) next_target_ = {(sharp_lo + sharp_hi) * 0.5f, radius};
     }
     map_photons_.clear();
     map_photons_.reserve(total);
@@ -349,13 +351,22 @@ class CausticsSolver final : public sdk::Integrator {
     if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0)) return;
     const bool delta_pos = es.flags & NIMBUS_LIGHT_DELTA_POSITION;
     const bool infinite = es.flags & NIMBUS_LIGHT_INFINITE;
-    const Vec3f n_e = Vec3f::load(es.n), dir0 = Vec3f::load(es.dir);
+    const Vec3f n_e = Vec3f::load(es.n);
+    Vec3f dir0 = Vec3f::load(es.dir);
+    float pdf_dir = es.pdf_dir;
+    Rgb Le = Rgb::load(es.Le);
     // Infinite lights: the solver's own emission disk (emitters.hpp), same numbers as the host's.
     const Vec3f org = infinite ? emitters_.disk_origin(dir0, ue[0], ue[1]) : Vec3f::load(es.org);
+    // Finite lights: the host's emission point, then a direction in the cone towards the target.
+    if (const EmissionCone cone = infinite ? EmissionCone() : emitters_.cone(light, org); cone.active()) {
+      dir0 = cone.sample(ue[2], ue[3]);
+      pdf_dir = cone.pdf();
+      Le = emitted(light, em, es, dir0);
+    }
     const float pdf_pos = infinite ? em.pdf_pos : es.pdf_pos;
     const float cos_e = delta_pos || infinite ? 1.0f : std::abs(dot(n_e, dir0));
-    const float lp = sel * pdf_pos * es.pdf_dir;
-    Rgb beta = Rgb::load(es.Le) * (cos_e / lp);
+    const float lp = sel * pdf_pos * pdf_dir;
+    Rgb beta = Le * (cos_e / lp);
     if (is_black(beta) || !is_finite(beta)) return;
     PhotonMis mis_state;
     mis_state.emit(em.hittable(), cos_e, lp);
@@ -426,6 +437,31 @@ class CausticsSolver final : public sdk::Integrator {
     }
   }
 
+  // Radiance (area) or intensity (point, spot) that finite light `light` emits from es.org along w.
+  Rgb emitted(uint32_t light, const Emitter &em, const nimbus_light_emission_t &es, const Vec3f &w) const {
+    const nimbus_host_t *h = host().get();
+    if (em.kind == EmitterKind::Point) return Rgb::load(es.Le);  // isotropic
+    if (em.kind == EmitterKind::Spot) {
+      // The spot's falloff towards w: its intensity / d^2 as seen from a receiver at unit distance.
+      nimbus_interaction_t at{};
+      (Vec3f::load(es.org) + w).store(at.p);
+      const float u[2] = {0.5f, 0.5f};
+      nimbus_light_incident_t li{};
+      lights_->sample_incident(h, light, &at, u, &li);
+      return li.pdf > 0 ? Rgb::load(li.L) * length_squared(Vec3f::load(at.p) - Vec3f::load(es.org)) : Rgb(0);
+    }
+    nimbus_interaction_t on_light{};
+    std::memcpy(on_light.p, es.org, sizeof(on_light.p));
+    std::memcpy(on_light.ng, es.n, sizeof(on_light.ng));
+    std::memcpy(on_light.ns, es.n, sizeof(on_light.ns));
+    on_light.light_id = light;
+    on_light.flags = NIMBUS_IX_EMISSIVE;
+    float wo[3], L[3];
+    w.store(wo);
+    lights_->eval_emitted(h, &on_light, wo, L);
+    return Rgb::load(L);
+  }
+
   // E of the first photon vertex: how NEE from it would have sampled the emission point.
   float first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
                          const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const {
@@ -449,7 +485,7 @@ class CausticsSolver final : public sdk::Integrator {
     on_light.light_id = light;
     on_light.flags = NIMBUS_IX_EMISSIVE;
     const float pdf = lights_->pdf_incident(h, light, &ix, wo_arr, &on_light);
-    const float cos_z = std::abs(dot(Vec3f::load(es.n), Vec3f::load(es.dir)));
+    const float cos_z = std::abs(dot(Vec3f::load(es.n), wo));  // wo = -(the photon's direction)
     // nk * d2 = pmf * pdf * cos_z: pass d2 = 1 with nk already multiplied out.
     return photon_nee_term(true, pmf * pdf * cos_z, 1.0f, lp, c_in);
   }
@@ -556,7 +592,7 @@ class CausticsSolver final : public sdk::Integrator {
                   sampler_iface_->pmf(sampler_, &prev, l) * lights_->pdf_incident(h, l, &prev, ray.dir, &ix);
               nee_ratio = mis(light_pdf / prev_pdf);
             }
-            const float lp = emitters_.lp(l, Vec3f::load(ix.ng), wo, Vec3f::load(prev.p));
+            const float lp = emitters_.lp(l, Vec3f::load(ix.p), Vec3f::load(ix.ng), wo, Vec3f::load(prev.p));
             const float w = hit_weight(nee_ratio, cam.mis.s_cam(segments), lp);
             rec.add(beta * Le * w, light_group_[l], segments, ids_, lp > 0 && cam.mis.eligible(segments));
           }
@@ -644,7 +680,7 @@ class CausticsSolver final : public sdk::Integrator {
                                   lights_->pdf_incident(host().get(), l, &prev, d, nullptr);
           nee_ratio = mis(light_pdf / prev_pdf);
         }
-        const float lp = emitters_.lp(l, Vec3f(), -dir, Vec3f::load(prev.p));
+        const float lp = emitters_.lp(l, Vec3f(), Vec3f(), -dir, Vec3f::load(prev.p));
         const float w = hit_weight(nee_ratio, cam.mis.s_cam(segments), lp);
         rec.add(beta * Le * w, light_group_[l], segments, ids_, lp > 0 && cam.mis.eligible(segments));
       }
@@ -689,7 +725,7 @@ class CausticsSolver final : public sdk::Integrator {
       const Emitter &em = emitters_[light];
       const bool infinite = ls.flags & NIMBUS_LIGHT_INFINITE;
       const float hit_ratio = delta ? 0.0f : mis(bsdf_pdf / light_pdf);
-      const float lp = emitters_.lp(light, Vec3f::load(ls.n), -wi, Vec3f::load(ix.p));
+      const float lp = emitters_.lp(light, Vec3f::load(ls.p), Vec3f::load(ls.n), -wi, Vec3f::load(ix.p));
       const float cos_j = std::abs(dot(Vec3f::load(ix.ng), wi));
       const float d2 = infinite ? 1.0f : ls.dist * ls.dist;
       float nk = pmf;  // delta lights
@@ -766,10 +802,10 @@ class CausticsSolver final : public sdk::Integrator {
   bool emitter_pdfs_known_ = false;
   float scene_radius_ = 1, theta_pix_ = 0;
   Vec3f scene_center_;
-  struct Disk {
+  struct Target {
     Vec3f center;
     float radius = 0;
-  } next_disk_;  // emission disk of infinite lights from the next photon pass on
+  } next_target_;  // emission target (emitters.hpp) from the next photon pass on
   uint32_t width_ = 0, height_ = 0;
   PhotonSchedule schedule_;
   std::vector<Photon> map_photons_;

@@ -1,15 +1,23 @@
 // What the caustics solver knows about each light: its kind (from the info flags), LightMix group, and
 // the photon-emission densities the MIS weights need on the camera side (P_sel, P_pos, P_dir), which
-// must equal what the host's sample_emission produces for the same point and direction:
-//   area: uniform by area (P_pos = 1 / area, learnt from one sample_emission call per light) and
-//         cosine-weighted directions (halved for two-sided emitters);
-//   point: uniform sphere; spot: uniform cone of half angle acos(cos_theta_e) around the axis;
-//   sun: an emission disk (P_pos = 1 / (pi R_e^2)) and a uniform cone (or a delta direction). The disk
-//   starts as the host's (the scene's bounding sphere) and shrinks to the bounding sphere of the sharp
-//   surfaces photons met in the probe pass (spec 6.2): the solver then places sun photons on its own disk,
-//   and a receiver whose line towards the sun misses that disk has no merge technique (P_pos = 0).
-// Environment lights do not emit photons (v1: uniform and dim skies are PT's job, spec 6.2; map pruning
-// comes with light-selection adaptation), so their P_sel is 0 and no merge technique exists for them.
+// must equal what the photon tracer produces for the same point and direction.
+//
+// Emission target (spec 6.2's emission disk, extended to finite lights). Photons that miss every sharp
+// surface on their first segment can only be stored after a rough-sharp-rough sequence, which path
+// tracing samples anyway (NEE at the rough vertex next to the light). So after the probe pass the
+// solver aims photons at the bounding sphere of the sharp surfaces the probe met ("the target"):
+//   sun:   an emission disk of the target's radius (P_pos = 1 / (pi R_e^2)) and the host's uniform cone
+//          (or delta direction); a receiver whose line towards the sun misses the disk has P_pos = 0;
+//   point, spot: directions uniform in the cone from the light that just covers the target (a spot keeps
+//          its own cone when that is narrower);
+//   area:  the host's uniform point on the emitter, then directions uniform in the cone from that point
+//          covering the target (cosine-weighted, as the host, from points inside the target).
+// Directions outside the cone have P_dir = 0: no merge technique exists for those paths and MIS gives
+// them to path tracing, so the image stays consistent. A small glass sphere 2 m from a point light
+// covers 1.5 % of its sphere of directions: the cone multiplies the photons that reach it by ~20-60.
+// Before the probe's target is known the target is the scene's bounding sphere (no cone for lights
+// inside it). Environment lights do not emit photons (v1: uniform and dim skies are PT's job, spec 6.2;
+// map pruning comes with light-selection adaptation), so their P_sel is 0 and no merge technique exists.
 #pragma once
 
 #include <nimbus/lights.h>
@@ -22,6 +30,36 @@
 
 namespace nimbus::caustics {
 
+// A cone of directions around a unit axis, uniform density. Stores 1 - cos and sin^2 of its half angle
+// (at most 90 degrees) rather than cos, so that a small target seen from far away stays exact.
+struct EmissionCone {
+  Vec3f axis;
+  float one_minus_cos = 0;  // 0: no cone (emit as the host does)
+  float sin2 = 0;
+
+  bool active() const { return one_minus_cos > 0; }
+  float pdf() const { return uniform_cone_pdf_narrow(one_minus_cos); }
+  bool contains(const Vec3f &w) const {
+    const float c = dot(w, axis);
+    return c > 0 && length_squared(cross(w, axis)) <= sin2 * length_squared(w);
+  }
+  Vec3f sample(float u0, float u1) const {
+    return Frame::from_normal(axis).to_world(sample_uniform_cone_narrow(u0, u1, one_minus_cos));
+  }
+  // The cone of directions from `from` that covers the sphere (center, radius); inactive when `from` is
+  // inside the sphere (every direction may reach it).
+  static EmissionCone towards(const Vec3f &from, const Vec3f &center, float radius) {
+    EmissionCone c;
+    const Vec3f d = center - from;
+    const float d2 = length_squared(d), r2 = radius * radius;
+    if (!(d2 > r2) || !std::isfinite(d2)) return c;
+    c.sin2 = r2 / d2;
+    c.one_minus_cos = c.sin2 / (1.0f + std::sqrt(1.0f - c.sin2));  // 1 - sqrt(1 - s^2), without cancellation
+    c.axis = d / std::sqrt(d2);
+    return c;
+  }
+};
+
 enum class EmitterKind : uint8_t { Area, Point, Spot, Sun, Environment };
 
 struct Emitter {
@@ -32,6 +70,8 @@ struct Emitter {
   Vec3f axis;              // spot: the cone axis; sun: the direction photons travel
   float cos_theta_e = -1;  // spot / sun cone
   float pdf_pos = 0;       // area: 1 / area (filled by the first photon pass); sun: 1 / (pi R_e^2)
+  Vec3f position;          // point, spot
+  EmissionCone cone;       // point, spot: the emission cone towards the target (inactive: the host's)
   bool delta_position() const { return flags & NIMBUS_LIGHT_DELTA_POSITION; }
   bool delta_direction() const { return flags & NIMBUS_LIGHT_DELTA_DIRECTION; }
   bool infinite() const { return flags & NIMBUS_LIGHT_INFINITE; }
@@ -46,6 +86,7 @@ inline Emitter make_emitter(const nimbus_light_info_t &info) {
   e.power = std::isfinite(info.power) && info.power > 0 ? info.power : 0.0f;
   e.axis = Vec3f::load(info.axis);
   e.cos_theta_e = info.cos_theta_e;
+  e.position = (Vec3f::load(info.bounds_min) + Vec3f::load(info.bounds_max)) * 0.5f;
   const bool has_axis = !is_black(e.axis);
   if (info.flags & NIMBUS_LIGHT_AREA)
     e.kind = EmitterKind::Area;
@@ -63,19 +104,32 @@ class EmitterSet {
   void build(std::vector<Emitter> emitters, const Vec3f &scene_center, float scene_radius) {
     emitters_ = std::move(emitters);
     scene_center_ = scene_center, scene_radius_ = scene_radius;
-    set_disk(scene_center, scene_radius);
+    set_target(scene_center, scene_radius);
     std::vector<double> w(emitters_.size(), 0.0);
     for (size_t i = 0; i < emitters_.size(); ++i)
       w[i] = emitters_[i].kind == EmitterKind::Environment ? 0.0 : double(emitters_[i].power);
     table_ = AliasTable(w);
   }
 
-  // The emission disk of infinite lights: perpendicular to the light's direction, centred on the
-  // projection of `center`, radius `radius`.
-  void set_disk(const Vec3f &center, float radius) {
+  // The emission target (see the top of this file): infinite lights emit from a disk perpendicular to
+  // their direction, centred on the projection of `center`, of radius `radius`; finite lights aim at
+  // the sphere (center, radius).
+  void set_target(const Vec3f &center, float radius) {
     disk_center_ = center, disk_radius_ = radius;
-    for (Emitter &e : emitters_)
+    for (Emitter &e : emitters_) {
       if (e.infinite()) e.pdf_pos = 1 / (kPi * sqr(radius));
+      e.cone = {};
+      if (e.kind != EmitterKind::Point && e.kind != EmitterKind::Spot) continue;
+      const EmissionCone c = EmissionCone::towards(e.position, center, radius);
+      if (e.kind == EmitterKind::Spot && !(c.one_minus_cos < 1 - e.cos_theta_e)) continue;
+      e.cone = c;
+    }
+  }
+  // The cone photons of light `l` leaving `z` are emitted into; inactive: the host's own directions.
+  EmissionCone cone(uint32_t l, const Vec3f &z) const {
+    const Emitter &e = emitters_[l];
+    if (e.kind == EmitterKind::Area) return EmissionCone::towards(z, disk_center_, disk_radius_);
+    return e.cone;
   }
   const Vec3f &disk_center() const { return disk_center_; }
   float disk_radius() const { return disk_radius_; }
@@ -99,22 +153,26 @@ class EmitterSet {
   float selection_pmf(uint32_t light) const { return table_.pmf(light); }
   int64_t pick(float u, float *pmf) const { return table_.sample(u, pmf); }
 
-  // lp for light `l` emitting from `z`'s surface with normal `n` (area lights) along the unit direction
+  // lp for light `l` emitting from `z` (area lights: with surface normal `n`) along the unit direction
   // `w` (from the light towards the receiver `p`). 0 when the light cannot emit that photon.
-  float lp(uint32_t l, const Vec3f &n, const Vec3f &w, const Vec3f &p) const {
+  float lp(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w, const Vec3f &p) const {
     const float sel = table_.pmf(l);
     if (!(sel > 0)) return 0;
     const Emitter &e = emitters_[l];
     switch (e.kind) {
       case EmitterKind::Area: {
-        const float c = dot(n, w);
+        if (const EmissionCone c = cone(l, z); c.active())
+          return c.contains(w) ? sel * e.pdf_pos * c.pdf() : 0.0f;
+        const float cos_w = dot(n, w);
         const bool two_sided = e.flags & NIMBUS_LIGHT_TWO_SIDED;
-        const float pdf_dir = two_sided ? 0.5f * std::abs(c) * kInvPi : std::max(c, 0.0f) * kInvPi;
+        const float pdf_dir = two_sided ? 0.5f * std::abs(cos_w) * kInvPi : std::max(cos_w, 0.0f) * kInvPi;
         return sel * e.pdf_pos * pdf_dir;
       }
       case EmitterKind::Point:
+        if (e.cone.active()) return e.cone.contains(w) ? sel * e.cone.pdf() : 0.0f;
         return sel * kUniformSpherePdf;
       case EmitterKind::Spot:
+        if (e.cone.active()) return e.cone.contains(w) ? sel * e.cone.pdf() : 0.0f;
         return dot(w, e.axis) >= e.cos_theta_e ? sel * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
       case EmitterKind::Sun:
         if (!on_disk(p, w)) return 0;

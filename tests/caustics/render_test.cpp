@@ -226,6 +226,16 @@ lights:
 )");
 }
 
+// Spot light whose cone (40 degrees, soft edge) is wider than the cone towards the sphere: photons are
+// aimed at the sphere and carry the spot's falloff in their direction.
+TEST(CausticsRender, ConvergesToLightTracerSpot) {
+  converges_to_light_tracer(R"(
+lights:
+  - { type: spot, position: [-2.0, 0, 1.6], direction: [2.0, 0, -1.3], cone: 40, softness: 25,
+      intensity: [12, 12, 12], group: key }
+)");
+}
+
 // Sun (a 6 degree disk): infinite-light emission from the solver's own disk around the sharp surfaces.
 TEST(CausticsRender, ConvergesToLightTracerSun) {
   converges_to_light_tracer(R"(
