@@ -11,6 +11,7 @@
 #include <cstring>
 #include <string>
 
+#include "core/bounding_sphere.hpp"
 #include "core/math.hpp"
 #include "core/sampling.hpp"
 #include "emitters.hpp"
@@ -38,6 +39,8 @@ constexpr uint64_t kPhotonsPerPathCap = 4;  // a task stops tracing when its buf
 // camera paths are spread over several iterations, so the photon : camera path ratio stays ~1.
 constexpr uint64_t kMaxPhotonPaths = uint64_t(1) << 22;
 constexpr uint64_t kProbePaths = uint64_t(1) << 16;
+// Sharp vertices a probe task keeps for the emission target (beyond it: the box's sphere).
+constexpr size_t kSharpPointsPerTask = 16384;
 
 inline bool has(nimbus_lobe_t lobes, nimbus_lobe_t bits) { return (lobes & bits) != 0; }
 
@@ -245,6 +248,8 @@ class CausticsSolver final : public sdk::Integrator {
     uint64_t paths = 0;  // completed paths
     bool saw_sharp = false;
     Vec3f sharp_lo{kInfinity}, sharp_hi{-kInfinity};  // bounds of the sharp vertices met
+    std::vector<Vec3f> sharp_points;                  // the probe's sharp vertices (up to a cap)
+    bool sharp_points_full = false;
   };
 
   // P_pos of area lights: one sample_emission per light (uniform area sampling: constant).
@@ -305,9 +310,21 @@ class CausticsSolver final : public sdk::Integrator {
     // would otherwise pass every caustic-forming surface. The probe's own map keeps the scene's target
     // (camera-side MIS must use the densities its photons came from), so the new target takes effect
     // with the next pass.
+    // The target: the smaller of the sphere around the vertices' box and Ritter's sphere around the
+    // vertices themselves (a glass sphere's hits give its own sphere, not the box's, sqrt(3) larger:
+    // 3x the photons reach it), with a 5 % margin.
     if (pass == 1 && sharp) {
-      const float radius = 0.5f * length(sharp_hi - sharp_lo) * 1.05f + 1e-4f * scene_radius_;
-      if (radius < scene_radius_) next_target_ = {(sharp_lo + sharp_hi) * 0.5f, radius};
+      Sphere target{(sharp_lo + sharp_hi) * 0.5f, 0.5f * length(sharp_hi - sharp_lo)};
+      bool complete = true;
+      std::vector<Vec3f> points;
+      for (const PhotonChunk &c : chunks) {
+        complete = complete && !c.sharp_points_full;
+        points.insert(points.end(), c.sharp_points.begin(), c.sharp_points.end());
+      }
+      if (complete)
+        if (const Sphere tight = ritter_bounding_sphere(points); tight.radius < target.radius) target = tight;
+      const float radius = target.radius * 1.05f + 1e-4f * scene_radius_;
+      if (radius < scene_radius_) next_target_ = {target.center, radius};
     }
     map_photons_.clear();
     map_photons_.reserve(total);
@@ -396,6 +413,12 @@ class CausticsSolver final : public sdk::Integrator {
         out.saw_sharp = true;
         out.sharp_lo = min(out.sharp_lo, Vec3f::load(ix.p));
         out.sharp_hi = max(out.sharp_hi, Vec3f::load(ix.p));
+        if (pass == 1 && !out.sharp_points_full) {
+          if (out.sharp_points.size() < kSharpPointsPerTask)
+            out.sharp_points.push_back(Vec3f::load(ix.p));
+          else
+            out.sharp_points_full = true;
+        }
       }
 
       float nee_term = 0;
@@ -802,10 +825,7 @@ class CausticsSolver final : public sdk::Integrator {
   bool emitter_pdfs_known_ = false;
   float scene_radius_ = 1, theta_pix_ = 0;
   Vec3f scene_center_;
-  struct Target {
-    Vec3f center;
-    float radius = 0;
-  } next_target_;  // emission target (emitters.hpp) from the next photon pass on
+  Sphere next_target_;  // emission target (emitters.hpp) from the next photon pass on
   uint32_t width_ = 0, height_ = 0;
   PhotonSchedule schedule_;
   std::vector<Photon> map_photons_;

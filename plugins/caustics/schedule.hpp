@@ -36,13 +36,16 @@ struct ScheduleConfig {
   // photon pass.
   double photon_paths_per_camera_path = 0.5;
   uint64_t probe = uint64_t(1) << 16;  // the first pass
-  // N_min never below this: the spec's N_min = 2^22 / 64 = 2^16 (section 5), kept when the cap above
-  // lowers N_max (N_min = N_max / 64 of the capped N_max was 1,800 at 640x360). Small caustics (a
-  // useful-pixel ratio near 0) get N_min paths per pass, so the floor sets their photon density; without
-  // photon guiding most of those paths miss the caustic-forming objects. Equal-time relMSE at 6 s,
-  // 640x360, 2^16 against 2^14 (docs/performance.md): sphere-point, sphere-area, glasses, ring 1.9-2.6x
-  // lower, pool 1.2x lower; per-iteration overhead +3 to +14 points on the scenes at the floor.
-  uint64_t min_floor = 65536;
+  // N_min never below this (the spec's N_min = 2^22 / 64 = 2^16 is kept for the probe). Small caustics
+  // (a useful-pixel ratio near 0) get N_min paths per pass, so the floor sets their photon density. The
+  // spec's 2^16 assumes photons emitted over each light's whole range, most of them missing every
+  // caustic-forming surface (uniform emission stored ~1 photon per 60 paths on sphere-point). Photons are
+  // now aimed at the sharp surfaces (emitters.hpp) and 2^14 paths store 4-10x more photons per pass than
+  // 2^16 did. Measured at 640x360 on 2 cores (docs/performance.md), 2^14 against 2^16: overhead per
+  // iteration over nimbus.pt 33 / 42 / 38 / 26 % against 97 / 81 / 57 / 65 % on sphere-point /
+  // sphere-area / ring / glasses; relMSE at equal time the same on sphere-point and glasses, ~15 % lower
+  // on sphere-area (more iterations), 1.5x higher on the ring (still ~1000x below nimbus.pt's).
+  uint64_t min_floor = 16384;
   uint64_t camera_paths = 1;  // camera paths per iteration (the render region's pixels)
 
   uint64_t effective_max() const {
