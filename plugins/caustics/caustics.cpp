@@ -460,6 +460,17 @@ class CausticsSolver final : public sdk::Integrator {
     }
   }
 
+  // The emitter surface point a photon of area light `light` left from, as an interaction.
+  static nimbus_interaction_t emission_point(uint32_t light, const nimbus_light_emission_t &es) {
+    nimbus_interaction_t on_light{};
+    std::memcpy(on_light.p, es.org, sizeof(on_light.p));
+    std::memcpy(on_light.ng, es.n, sizeof(on_light.ng));
+    std::memcpy(on_light.ns, es.n, sizeof(on_light.ns));
+    on_light.light_id = light;
+    on_light.flags = NIMBUS_IX_EMISSIVE;
+    return on_light;
+  }
+
   // Radiance (area) or intensity (point, spot) that finite light `light` emits from es.org along w.
   Rgb emitted(uint32_t light, const Emitter &em, const nimbus_light_emission_t &es, const Vec3f &w) const {
     const nimbus_host_t *h = host().get();
@@ -473,12 +484,7 @@ class CausticsSolver final : public sdk::Integrator {
       lights_->sample_incident(h, light, &at, u, &li);
       return li.pdf > 0 ? Rgb::load(li.L) * length_squared(Vec3f::load(at.p) - Vec3f::load(es.org)) : Rgb(0);
     }
-    nimbus_interaction_t on_light{};
-    std::memcpy(on_light.p, es.org, sizeof(on_light.p));
-    std::memcpy(on_light.ng, es.n, sizeof(on_light.ng));
-    std::memcpy(on_light.ns, es.n, sizeof(on_light.ns));
-    on_light.light_id = light;
-    on_light.flags = NIMBUS_IX_EMISSIVE;
+    const nimbus_interaction_t on_light = emission_point(light, es);
     float wo[3], L[3];
     w.store(wo);
     lights_->eval_emitted(h, &on_light, wo, L);
@@ -501,12 +507,7 @@ class CausticsSolver final : public sdk::Integrator {
       const float pdf = em.delta_direction() ? 1.0f : lights_->pdf_incident(h, light, &ix, wo_arr, nullptr);
       return photon_nee_term(true, pmf * pdf, 1.0f, lp, c_in);
     }
-    nimbus_interaction_t on_light{};
-    std::memcpy(on_light.p, es.org, sizeof(on_light.p));
-    std::memcpy(on_light.ng, es.n, sizeof(on_light.ng));
-    std::memcpy(on_light.ns, es.n, sizeof(on_light.ns));
-    on_light.light_id = light;
-    on_light.flags = NIMBUS_IX_EMISSIVE;
+    const nimbus_interaction_t on_light = emission_point(light, es);
     const float pdf = lights_->pdf_incident(h, light, &ix, wo_arr, &on_light);
     const float cos_z = std::abs(dot(Vec3f::load(es.n), wo));  // wo = -(the photon's direction)
     // nk * d2 = pmf * pdf * cos_z: pass d2 = 1 with nk already multiplied out.
