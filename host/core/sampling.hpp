@@ -47,7 +47,7 @@ inline float uniform_cone_pdf_narrow(float one_minus_cos) { return 1.0f / (2.0f 
 inline Vec3f sample_uniform_cone(float u0, float u1, float cos_theta_max) {
   return sample_uniform_cone_narrow(u0, u1, 1.0f - cos_theta_max);
 }
-inline float uniform_cone_pdf(float cos_theta_max) { return 1.0f / (2.0f * kPi * (1.0f - cos_theta_max)); }
+inline float uniform_cone_pdf(float cos_theta_max) { return uniform_cone_pdf_narrow(1.0f - cos_theta_max); }
 
 // Barycentrics (b1, b2) uniform over a triangle (Heitz 2019's low-distortion map, as pbrt-v4).
 inline Vec2f sample_uniform_triangle(float u0, float u1) {

@@ -159,20 +159,21 @@ class EmitterSet {
     const float sel = table_.pmf(l);
     if (!(sel > 0)) return 0;
     const Emitter &e = emitters_[l];
+    if (!e.infinite())
+      if (const EmissionCone c = cone(l, z); c.active()) {
+        const float pdf_pos = e.kind == EmitterKind::Area ? e.pdf_pos : 1.0f;  // point, spot: a delta
+        return c.contains(w) ? sel * pdf_pos * c.pdf() : 0.0f;
+      }
     switch (e.kind) {
       case EmitterKind::Area: {
-        if (const EmissionCone c = cone(l, z); c.active())
-          return c.contains(w) ? sel * e.pdf_pos * c.pdf() : 0.0f;
         const float cos_w = dot(n, w);
         const bool two_sided = e.flags & NIMBUS_LIGHT_TWO_SIDED;
         const float pdf_dir = two_sided ? 0.5f * std::abs(cos_w) * kInvPi : std::max(cos_w, 0.0f) * kInvPi;
         return sel * e.pdf_pos * pdf_dir;
       }
       case EmitterKind::Point:
-        if (e.cone.active()) return e.cone.contains(w) ? sel * e.cone.pdf() : 0.0f;
         return sel * kUniformSpherePdf;
       case EmitterKind::Spot:
-        if (e.cone.active()) return e.cone.contains(w) ? sel * e.cone.pdf() : 0.0f;
         return dot(w, e.axis) >= e.cos_theta_e ? sel * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
       case EmitterKind::Sun:
         if (!on_disk(p, w)) return 0;
