@@ -41,6 +41,8 @@ constexpr uint64_t kMaxPhotonPaths = uint64_t(1) << 22;
 constexpr uint64_t kProbePaths = uint64_t(1) << 16;
 // Sharp vertices a probe task keeps for the emission target (beyond it: the box's sphere).
 constexpr size_t kSharpPointsPerTask = 16384;
+// Share of lookups whose radius the occupancy filter in front of the photon map covers (photon_map.hpp).
+constexpr double kFilterShare = 0.95;
 
 inline bool has(nimbus_lobe_t lobes, nimbus_lobe_t bits) { return (lobes & bits) != 0; }
 
@@ -128,6 +130,8 @@ class CausticsSolver final : public sdk::Integrator {
     records_.resize(info.worker_count);
     region_pixels_.resize(info.worker_count);
     for (auto &p : region_pixels_) p = 0;
+    lookup_radii_.resize(info.worker_count);
+    for (auto &r : lookup_radii_) r.clear();
     saw_sharp_.resize(info.worker_count);
     for (auto &s : saw_sharp_) s = 0;
     theta_pix_ = camera_->resolution(h, &width_, &height_);
@@ -342,7 +346,11 @@ class CausticsSolver final : public sdk::Integrator {
       };
       tasks_->parallel_for(host().get(), count, 1, task, const_cast<std::function<void(size_t)> *>(&f));
     };
-    map_.build(map_photons_, parallel);
+    // The filter's reach: the radius 95 % of the lookups since the last pass stayed within (radii
+    // only shrink from pass to pass), so nearly every lookup can ask it first.
+    RadiusHistogram radii;
+    for (RadiusHistogram &r : lookup_radii_) radii.add(r), r.clear();
+    map_.build(map_photons_, parallel, radii.quantile(kFilterShare));
     if (progress_) progress_->report(h, paths, paths, "photons");
     stats_.photon_paths += done;
     stats_.photons += map_photons_.size();
@@ -642,7 +650,10 @@ class CausticsSolver final : public sdk::Integrator {
           cam.r = cam.mis.rough_count == 1 ? cam.radius : cam.r * kRadiusGrowth;
         }
         // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
-        if (lookup && segments + 2 <= max_depth_) merge(ix, wo, beta, cam, segments, rec);
+        if (lookup && segments + 2 <= max_depth_) {
+          lookup_radii_[ctx].add(cam.r);
+          merge(ix, wo, beta, cam, segments, rec);
+        }
       } else if (!saw_sharp_[ctx.worker_index] && has(lobes, NIMBUS_LOBE_SPECULAR | NIMBUS_LOBE_GLOSSY) &&
                  is_sharp(ix, lobes)) {
         saw_sharp_[ctx.worker_index] = 1;  // wakes a dormant solver (zero-cost rule)
@@ -817,7 +828,8 @@ class CausticsSolver final : public sdk::Integrator {
   std::vector<uint32_t> light_group_;  // LightMix group of each light
   ElementIds registered_, ids_;        // all registered elements; the active ones
   sdk::PerWorker<SampleRecord> records_;
-  mutable sdk::PerWorker<uint8_t> saw_sharp_;  // a camera path met a sharp vertex (per worker)
+  mutable sdk::PerWorker<uint8_t> saw_sharp_;             // a camera path met a sharp vertex (per worker)
+  mutable sdk::PerWorker<RadiusHistogram> lookup_radii_;  // radii of the lookups since the last photon pass
 
   // The solver.
   bool enabled_ = true;  // the `caustics` switch

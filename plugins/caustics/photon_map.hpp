@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/math.hpp"
+#include "occupancy_filter.hpp"
 
 namespace nimbus::caustics {
 
@@ -73,8 +74,9 @@ class PhotonKdTree {
  public:
   static constexpr size_t kLeafSize = 8;
 
-  // Permutes `photons` into tree order. The vector must outlive the tree and not change after.
-  void build(std::vector<Photon> &photons, const ParallelFor &parallel = serial_for) {
+  // Permutes `photons` into tree order. The vector must outlive the tree and not change after. Queries
+  // with radii up to `reach` (if > 0) first ask an occupancy filter whether any photon is near.
+  void build(std::vector<Photon> &photons, const ParallelFor &parallel = serial_for, float reach = 0) {
     photons_ = photons.data();
     n_ = photons.size();
     uint32_t depth = 0;
@@ -87,12 +89,14 @@ class PhotonKdTree {
     std::vector<Range> pending;
     split_top(Range{0, 0, n_}, kSerialLevels, pending);
     parallel(pending.size(), [&](size_t i) { build_range(pending[i]); });
+    filter_.build(n_, reach, [&](size_t i) { return photons_[i].position(); });
   }
 
   size_t size() const { return n_; }
   const Photon *data() const { return photons_; }
   // Bytes of index structure (besides the photons themselves).
-  size_t index_bytes() const { return nodes_.size() * sizeof(Node); }
+  size_t index_bytes() const { return nodes_.size() * sizeof(Node) + filter_.bytes(); }
+  float filter_reach() const { return filter_.reach(); }
 
   // Calls f(photon, squared distance) for every photon with |p - q|^2 <= r^2 (computed in float as
   // dx*dx + dy*dy + dz*dz), in tree order.
@@ -105,6 +109,7 @@ class PhotonKdTree {
             sqr(std::max({lo_.z - q.z, 0.0f, q.z - hi_.z})) >
         r2 * 1.0001f)
       return;
+    if (!filter_.may_hold(q, r)) return;
     struct Item {
       uint32_t id, lo, hi;
     };
@@ -191,6 +196,7 @@ class PhotonKdTree {
   };
   std::vector<Node> nodes_;  // internal nodes in heap order
   Vec3f lo_, hi_;            // bounds of all photons
+  OccupancyFilter filter_;
 };
 
 }  // namespace nimbus::caustics

@@ -1,7 +1,9 @@
 // Photon map (solver spec 10 iii): kd-tree radius queries return exactly the brute-force sets (inclusive
 // d^2 <= r^2 computed the same way) for empty, tiny and large maps and for uniform, clustered, coplanar,
-// collinear and duplicate points, radii from 0 to beyond the scene; the tree does not depend on how many
-// threads build it. Also: octahedral direction encoding.
+// collinear and duplicate points, radii from 0 to beyond the scene, with and without the occupancy
+// filter in front (radii below, at and above its reach, far from the origin); the filter turns most empty
+// lookups away; the tree does not depend on how many threads build it. Also: octahedral direction
+// encoding and the lookup-radius histogram.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -97,6 +99,110 @@ TEST(CausticsPhotonMap, RadiusQueriesEqualBruteForce) {
       }
     }
   }
+}
+
+// With the occupancy filter: the same sets as brute force for radii below, at and just above its reach
+// (which skip it), at the origin and 10^4 away from it, in every layout.
+TEST(CausticsPhotonMap, FilteredQueriesEqualBruteForce) {
+  std::mt19937_64 g(7);
+  for (float offset : {0.0f, 1e4f}) {
+    for (size_t n : {size_t(1), size_t(9), size_t(5000)}) {
+      for (Layout layout :
+           {Layout::Uniform, Layout::Clustered, Layout::Coplanar, Layout::Collinear, Layout::Duplicates}) {
+        std::vector<Photon> original = make_photons(n, layout, g);
+        for (Photon &p : original) (p.position() + Vec3f(offset)).store(p.p);
+        for (float reach : {1e-3f, 0.05f, 0.7f}) {
+          std::vector<Photon> ph = original;
+          PhotonKdTree tree;
+          tree.build(ph, serial_for, reach);
+          ASSERT_EQ(tree.filter_reach(), reach);
+          std::uniform_real_distribution<float> u(-1.2f, 1.2f), share(0, 1);
+          for (int i = 0; i < 400; ++i) {
+            Vec3f q = Vec3f(u(g), u(g), u(g)) + Vec3f(offset);
+            const Photon &o = original[std::uniform_int_distribution<size_t>(0, n - 1)(g)];
+            // Near a photon: at a random distance up to twice the reach, in a random direction.
+            if (i % 2 == 0)
+              q = o.position() + normalize(Vec3f(u(g), u(g), u(g)) + Vec3f(1e-3f)) * (2 * reach * share(g));
+            float r = reach * share(g);
+            if (i % 5 == 0) r = reach;
+            if (i % 5 == 1) r = std::nextafter(reach, kInfinity);  // beyond the reach: no filter
+            if (i % 7 == 0) {  // exactly some photon's distance (when within the reach)
+              const float dx = o.p[0] - q.x, dy = o.p[1] - q.y, dz = o.p[2] - q.z;
+              r = std::min(reach, std::sqrt(dx * dx + dy * dy + dz * dz));
+            }
+            std::vector<uint32_t> got;
+            tree.query(q, r, [&](const Photon &p, float) { got.push_back(p.bits); });
+            std::sort(got.begin(), got.end());
+            ASSERT_EQ(got, brute_force(original, q, r)) << "n " << n << " layout " << int(layout) << " reach "
+                                                        << reach << " r " << r << " offset " << offset;
+          }
+        }
+      }
+    }
+  }
+}
+
+// The filter answers "nothing here" for most lookups that find nothing: photons on two small patches of a
+// plane, lookups all over the plane (inside the map's bounds) with radii up to the reach.
+TEST(CausticsPhotonMap, FilterTurnsEmptyLookupsAway) {
+  std::mt19937_64 g(11);
+  std::uniform_real_distribution<float> u(-1, 1);
+  std::vector<Photon> ph(4000);
+  for (size_t i = 0; i < ph.size(); ++i) {
+    const Vec3f c = i % 2 ? Vec3f(-0.8f, -0.8f, 0) : Vec3f(0.8f, 0.8f, 0);
+    (c + Vec3f(u(g), u(g), 0) * 0.05f).store(ph[i].p);
+  }
+  const float reach = 0.004f;
+  OccupancyFilter filter;
+  filter.build(ph.size(), reach, [&](size_t i) { return ph[i].position(); });
+  int empty = 0, turned_away = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const Vec3f q(u(g), u(g), 0);
+    const float r = reach * std::uniform_real_distribution<float>(0.5f, 1)(g);
+    bool found = false;
+    for (const Photon &p : ph) found = found || length_squared(p.position() - q) <= r * r;
+    if (found) {
+      EXPECT_TRUE(filter.may_hold(q, r));
+      continue;
+    }
+    ++empty;
+    turned_away += filter.may_hold(q, r) ? 0 : 1;
+  }
+  ASSERT_GT(empty, 4500);
+  EXPECT_GT(turned_away, 0.95 * empty) << turned_away << " of " << empty;
+  // No filter: without a reach, or for radii above it.
+  EXPECT_TRUE(filter.may_hold(Vec3f(0.1f, -0.3f, 0), 2 * reach));
+  OccupancyFilter none;
+  none.build(ph.size(), 0, [&](size_t i) { return ph[i].position(); });
+  EXPECT_TRUE(none.may_hold(Vec3f(0.1f, -0.3f, 0), reach));
+  EXPECT_EQ(none.bytes(), 0u);
+}
+
+// The radius histogram's quantile: at least the asked share of radii lie at or below it, and it is within
+// 25 % of the exact quantile (four bins per octave); it does not depend on the order radii were added in.
+TEST(CausticsPhotonMap, RadiusHistogramQuantile) {
+  std::mt19937_64 g(13);
+  std::vector<float> radii(100000);
+  for (float &r : radii)
+    r = std::exp(std::uniform_real_distribution<float>(std::log(1e-5f), std::log(10.0f))(g));
+  RadiusHistogram a, b, c;
+  for (size_t i = 0; i < radii.size(); ++i) (i % 2 ? a : b).add(radii[i]);
+  c.add(b), c.add(a);
+  RadiusHistogram all;
+  for (size_t i = radii.size(); i-- > 0;) all.add(radii[i]);
+  std::vector<float> sorted = radii;
+  std::sort(sorted.begin(), sorted.end());
+  for (double q : {0.5, 0.9, 0.95, 1.0}) {
+    const float got = all.quantile(q);
+    EXPECT_EQ(got, c.quantile(q));
+    const size_t below = size_t(std::upper_bound(sorted.begin(), sorted.end(), got) - sorted.begin());
+    EXPECT_GE(double(below), q * double(sorted.size())) << q;
+    const float exact = sorted[std::min(sorted.size() - 1, size_t(q * double(sorted.size())))];
+    EXPECT_LE(got, exact * 1.25f * 1.0001f) << q;
+  }
+  RadiusHistogram empty;
+  empty.add(0.0f), empty.add(-1.0f), empty.add(kInfinity);
+  EXPECT_EQ(empty.quantile(0.95), 0.0f);
 }
 
 // The tree (photon order) is the same whether its subtrees are built by one or many threads.

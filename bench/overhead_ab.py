@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""Overhead over nimbus.pt of two builds of the caustics plugin, measured side by side in one run.
+
+    bench/overhead_ab.py --a OLD.so --b NEW.so scenes/caustics/*.yaml [--iterations 16] [--runs 5]
+
+Each run renders every scene with pt, with build A and with build B (the plugin library is copied into
+the build's plugin directory before each render, and restored at the end), same iterations and seed.
+Per run and build the overhead is caustics seconds / pt seconds - 1 against that run's pt render; the
+script prints per scene the median over runs for both builds and the median of the per-run ratio
+B / A of caustics seconds. The machine's speed drifts by ±10 % within minutes, so only ratios taken
+within one run are compared. Not part of CI.
+"""
+import argparse
+import os
+import shutil
+import statistics
+import tempfile
+
+from nimbus_tools import exr_metadata, run
+
+
+def seconds(nimbus, scene, integrator, iterations, seed, out):
+    run([nimbus, "render", scene, "-o", out, "--integrator", integrator, "--iterations", str(iterations),
+         "--seed", str(seed), "-q"], echo=False)
+    return float(exr_metadata(out)["nimbus:seconds"])
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("scenes", nargs="+")
+    ap.add_argument("--a", required=True, help="caustics plugin library, build A")
+    ap.add_argument("--b", required=True, help="caustics plugin library, build B")
+    ap.add_argument("--iterations", type=int, default=16)
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--nimbus", default="build/bin/nimbus")
+    args = ap.parse_args()
+
+    plugin = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(args.nimbus))), "lib", "nimbus",
+                          "plugins", "libnimbus_caustics.so")
+    with tempfile.TemporaryDirectory() as tmp:
+        saved = os.path.join(tmp, "saved.so")
+        shutil.copy2(plugin, saved)
+        libs = {"A": os.path.join(tmp, "a.so"), "B": os.path.join(tmp, "b.so")}
+        shutil.copy2(args.a, libs["A"])
+        shutil.copy2(args.b, libs["B"])
+        out = os.path.join(tmp, "img.exr")
+        try:
+            for scene in args.scenes:
+                over = {"A": [], "B": []}
+                ratio = []
+                for i in range(args.runs):
+                    pt = seconds(args.nimbus, scene, "pt", args.iterations, i + 1, out)
+                    t = {}
+                    for build in ("A", "B") if i % 2 == 0 else ("B", "A"):
+                        shutil.copy2(libs[build], plugin)
+                        t[build] = seconds(args.nimbus, scene, "caustics", args.iterations, i + 1, out)
+                        over[build].append(100 * (t[build] / pt - 1))
+                    ratio.append(t["B"] / t["A"])
+                print(f"{os.path.basename(scene):20s} overhead A {statistics.median(over['A']):6.1f} %  "
+                      f"B {statistics.median(over['B']):6.1f} %  time B/A {statistics.median(ratio):.3f}  "
+                      f"(runs A: {' '.join(f'{o:.0f}' for o in over['A'])}; B: {' '.join(f'{o:.0f}' for o in over['B'])})",
+                      flush=True)
+        finally:
+            shutil.copy2(saved, plugin)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,130 @@
+// A conservative "could any photon lie within r of q?" test in front of the photon kd-tree.
+// On the caustic scenes most camera lookups find no photon at all (16 iterations at 640x360, seed 1:
+// sphere-point 98 %, sphere-area 98 %, glasses 98 %, ring 95 %, pool 82 %), and the tree needs ~16 node
+// visits and two leaf scans to find that out. The filter answers with one hash and one bit: a bit set
+// per grid cell (edge reach) that some photon's box [p - reach, p + reach] overlaps, hashed into a bit
+// array. A photon within r <= reach of q has q inside its box, so q's cell is marked: the filter
+// never hides a photon; hash collisions only let a lookup through to the tree. Queries with r > reach
+// always go through. `reach` comes from the radii the previous iteration's lookups used
+// (RadiusHistogram), so the filter costs nothing in accuracy and changes no result.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/hash.hpp"
+#include "core/math.hpp"
+
+namespace nimbus::caustics {
+
+class OccupancyFilter {
+ public:
+  // Marks the cells around n positions, position(i) for i in [0, n). reach <= 0 (or not finite), or no
+  // position: no filter, every query goes through.
+  template <class Position>
+  void build(size_t n, float reach, Position &&position) {
+    bits_.clear();
+    reach_ = -1;
+    if (n == 0 || !(reach > 0) || !std::isfinite(reach)) return;
+    // Boxes are grown by a relative 1e-3: a photon the query's float d^2 <= r^2 accepts may lie a few
+    // ulps beyond r.
+    const double grown = double(reach) * 1.001;
+    Vec3f lo(kInfinity);
+    for (size_t i = 0; i < n; ++i) lo = min(lo, position(i));
+    for (int a = 0; a < 3; ++a) origin_[a] = double(lo[a]) - grown;
+    // Cells of edge `reach`: a photon marks <= 27. Lookups let through on sphere-point (8 iterations, of
+    // 2.0 M asked; 98 % of them find nothing): 18 % with 64 bits per photon; 19 % with edge 2 reach
+    // (<= 8 cells); 24 % with 32 bits, 15 % with 128, 12 % with 512 (hash collisions where photons are
+    // sparse). On the pool, 57 % (its floor is covered).
+    inv_cell_ = 1 / grown;
+    size_t words = 1;
+    while (words < n) words *= 2;
+    bits_.assign(words, 0);
+    mask_ = words * 64 - 1;
+    for (size_t i = 0; i < n; ++i) {
+      const Vec3f p = position(i);
+      int64_t c0[3], c1[3];
+      for (int a = 0; a < 3; ++a)
+        c0[a] = cell(double(p[a]) - grown, a), c1[a] = cell(double(p[a]) + grown, a);
+      for (int64_t x = c0[0]; x <= c1[0]; ++x)
+        for (int64_t y = c0[1]; y <= c1[1]; ++y)
+          for (int64_t z = c0[2]; z <= c1[2]; ++z) {
+            const uint64_t b = slot(x, y, z);
+            bits_[b >> 6] |= uint64_t(1) << (b & 63);
+          }
+    }
+    reach_ = reach;
+  }
+
+  // False only if no photon lies within r of q.
+  bool may_hold(const Vec3f &q, float r) const {
+    if (!(r <= reach_)) return true;
+    const uint64_t b = slot(cell(q.x, 0), cell(q.y, 1), cell(q.z, 2));
+    return (bits_[b >> 6] >> (b & 63)) & 1;
+  }
+
+  float reach() const { return reach_; }
+  size_t bytes() const { return bits_.size() * sizeof(uint64_t); }
+
+ private:
+  // Monotonic in v (floor of a double), so a point between two others has a cell index between theirs;
+  // clamped far outside any scene instead of overflowing.
+  int64_t cell(double v, int a) const {
+    return int64_t(std::floor(std::clamp((v - origin_[a]) * inv_cell_, -4.0e18, 4.0e18)));
+  }
+  uint64_t slot(int64_t x, int64_t y, int64_t z) const {
+    return mix64(uint64_t(x) ^ mix64(uint64_t(y) ^ mix64(uint64_t(z)))) & mask_;
+  }
+
+  std::vector<uint64_t> bits_;
+  uint64_t mask_ = 0;
+  double origin_[3] = {0, 0, 0}, inv_cell_ = 0;
+  float reach_ = -1;  // < 0: no filter
+};
+
+// Counts of lookup radii in four bins per octave: the radius below which a given share of lookups fall,
+// independent of the order the counts were added in (so of threads).
+class RadiusHistogram {
+ public:
+  void add(float r) {
+    if (!(r > 0) || !std::isfinite(r)) return;
+    int e = 0;
+    const float m = std::frexp(r, &e);  // r = m 2^e, m in [0.5, 1)
+    const int sub = std::min(kPerOctave - 1, int((m - 0.5f) * 2 * kPerOctave));
+    ++counts_[size_t(std::clamp((e - kMinExp) * kPerOctave + sub, 0, kBins - 1))];
+  }
+  void add(const RadiusHistogram &o) {
+    for (int i = 0; i < kBins; ++i) counts_[i] += o.counts_[i];
+  }
+  void clear() { counts_.fill(0); }
+  uint64_t total() const {
+    uint64_t t = 0;
+    for (uint64_t c : counts_) t += c;
+    return t;
+  }
+  // The upper edge of the bin in which the share q of all radii is reached (0 when empty): at least a
+  // share q of the radii are <= it.
+  float quantile(double q) const {
+    const uint64_t t = total();
+    if (t == 0) return 0;
+    uint64_t sum = 0;
+    for (int i = 0; i < kBins; ++i) {
+      sum += counts_[i];
+      if (double(sum) >= q * double(t)) {
+        const int e = i / kPerOctave + kMinExp, sub = i % kPerOctave;
+        return std::ldexp(0.5f + 0.5f * float(sub + 1) / kPerOctave, e);
+      }
+    }
+    return kInfinity;
+  }
+
+ private:
+  static constexpr int kPerOctave = 4, kMinExp = -126, kMaxExp = 128;
+  static constexpr int kBins = (kMaxExp - kMinExp) * kPerOctave;
+  std::array<uint64_t, kBins> counts_{};
+};
+
+}  // namespace nimbus::caustics
