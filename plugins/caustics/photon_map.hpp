@@ -98,18 +98,24 @@ class PhotonKdTree {
   size_t index_bytes() const { return nodes_.size() * sizeof(Node) + filter_.bytes(); }
   float filter_reach() const { return filter_.reach(); }
 
+  // False only if no photon lies within r of q: the map's bounds, then the occupancy filter. Most
+  // lookups end here; query() asks it first too.
+  bool may_hold(const Vec3f &q, float r) const {
+    if (n_ == 0 || !(r >= 0)) return false;
+    const float r2 = r * r;
+    if (sqr(std::max({lo_.x - q.x, 0.0f, q.x - hi_.x})) + sqr(std::max({lo_.y - q.y, 0.0f, q.y - hi_.y})) +
+            sqr(std::max({lo_.z - q.z, 0.0f, q.z - hi_.z})) >
+        r2 * 1.0001f)
+      return false;
+    return filter_.may_hold(q, r);
+  }
+
   // Calls f(photon, squared distance) for every photon with |p - q|^2 <= r^2 (computed in float as
   // dx*dx + dy*dy + dz*dz), in tree order.
   template <class F>
   void query(const Vec3f &q, float r, F &&f) const {
-    if (n_ == 0 || !(r >= 0)) return;
+    if (!may_hold(q, r)) return;
     const float r2 = r * r;
-    // The whole map's bounds first: most lookups of a sparse map end here.
-    if (sqr(std::max({lo_.x - q.x, 0.0f, q.x - hi_.x})) + sqr(std::max({lo_.y - q.y, 0.0f, q.y - hi_.y})) +
-            sqr(std::max({lo_.z - q.z, 0.0f, q.z - hi_.z})) >
-        r2 * 1.0001f)
-      return;
-    if (!filter_.may_hold(q, r)) return;
     struct Item {
       uint32_t id, lo, hi;
     };
