@@ -3,7 +3,8 @@
 
     bench/variance_split.py A.exr B.exr [--reference REF.exr]
 
-A and B: the same scene, integrator and budget, two seeds, rendered with the `caustics` element. Per
+A and B: the same scene, integrator and budget, two seeds, rendered with the `caustics` element
+(without it, as from nimbus.pt, beauty only). Per
 pixel and channel the variance of one render is estimated without a reference as (a - b)^2 / 2, and
 expressed in relMSE units as `nimbus compare` does: mean of (a - b)^2 / 2 / (r^2 + 0.01), r from REF (or
 (a + b) / 2 without one). Printed for beauty, for the regular light (beauty - caustics: paths without an
@@ -24,7 +25,8 @@ def read_channel(path, channel, tmp):
     """One channel as a float array, through a single-plane float FITS file (no PFM writer in Debian 12's
     OIIO): 2880-byte header blocks of 80-character cards up to END, then big-endian float32 data."""
     out = os.path.join(tmp, "channel.fits")
-    subprocess.run(["oiiotool", path, "--ch", channel, "-d", "float", "-o", out], check=True)
+    subprocess.run(["oiiotool", path, "--ch", channel, "-d", "float", "-o", out], check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     with open(out, "rb") as f:
         raw = f.read()
     pos, dims = 0, {}
@@ -55,7 +57,10 @@ def main():
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         a, b = read_rgb(args.a, "beauty", tmp), read_rgb(args.b, "beauty", tmp)
-        ca, cb = read_rgb(args.a, "caustics", tmp), read_rgb(args.b, "caustics", tmp)
+        try:
+            ca, cb = read_rgb(args.a, "caustics", tmp), read_rgb(args.b, "caustics", tmp)
+        except subprocess.CalledProcessError:  # no caustics element (nimbus.pt): beauty only
+            ca = cb = None
         ref = read_rgb(args.reference, "beauty", tmp) if args.reference else (a + b) / 2
     ok = np.isfinite(a).all(-1) & np.isfinite(b).all(-1) & np.isfinite(ref).all(-1)
     den = ref[ok] ** 2 + 0.01
@@ -63,7 +68,9 @@ def main():
     def rel_var(x, y):
         return float(np.mean((x[ok] - y[ok]) ** 2 / 2 / den))
 
-    parts = {"beauty": (a, b), "regular": (a - ca, b - cb), "caustics": (ca, cb)}
+    parts = {"beauty": (a, b)}
+    if ca is not None:
+        parts.update({"regular": (a - ca, b - cb), "caustics": (ca, cb)})
     for name, (x, y) in parts.items():
         print(f"variance of one render, {name:9s}: {rel_var(x, y):.4g}")
     if args.reference:

@@ -14,6 +14,7 @@
 
 #include "core/math.hpp"
 #include "occupancy_filter.hpp"
+#include "parallel.hpp"
 
 namespace nimbus::caustics {
 
@@ -63,13 +64,6 @@ struct Photon {
 };
 static_assert(sizeof(Photon) == 44, "photon layout");
 
-// Runs fn(i) for i in [0, count), possibly concurrently.
-using ParallelFor = std::function<void(size_t count, const std::function<void(size_t)> &fn)>;
-
-inline void serial_for(size_t count, const std::function<void(size_t)> &fn) {
-  for (size_t i = 0; i < count; ++i) fn(i);
-}
-
 class PhotonKdTree {
  public:
   static constexpr size_t kLeafSize = 8;
@@ -116,6 +110,7 @@ class PhotonKdTree {
   void query(const Vec3f &q, float r, F &&f) const {
     if (!may_hold(q, r)) return;
     const float r2 = r * r;
+    const float qa[3] = {q.x, q.y, q.z};  // indexed by the split axis: a load, not Vec3f's branches
     struct Item {
       uint32_t id, lo, hi;
     };
@@ -127,7 +122,7 @@ class PhotonKdTree {
       while (hi - lo > kLeafSize) {
         const Node nd = nodes_[id];
         const uint32_t mid = lo + (hi - lo) / 2;
-        const float d = q[int(nd.axis)] - nd.split;
+        const float d = qa[nd.axis] - nd.split;
         // Left holds p[a] <= split, right p[a] >= split. A point within r of q has |p[a] - q[a]| no
         // smaller than |split - q[a]| on the far side (float subtraction is monotonic), and its
         // computed d2 is no smaller than that square, so this never prunes a point the leaf accepts.
