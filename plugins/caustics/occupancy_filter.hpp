@@ -2,8 +2,8 @@
 // On the caustic scenes most camera lookups find no photon at all (16 iterations at 640x360, seed 1:
 // sphere-point 98 %, sphere-area 98 %, glasses 98 %, ring 95 %, pool 82 %), and the tree needs ~16 node
 // visits and two leaf scans to find that out. The filter answers with one hash and one bit: a bit set
-// per grid cell (edge reach) that some photon's box [p - reach, p + reach] overlaps, hashed into a bit
-// array. A photon within r <= reach of q has q inside its box, so q's cell is marked: the filter
+// per grid cell (edge 2 reach) that some photon's box [p - reach, p + reach] overlaps, hashed into a
+// bit array. A photon within r <= reach of q has q inside its box, so q's cell is marked: the filter
 // never hides a photon; hash collisions only let a lookup through to the tree. Queries with r > reach
 // always go through. `reach` comes from the radii the previous iteration's lookups used
 // (RadiusHistogram), so the filter costs nothing in accuracy and changes no result.
@@ -36,11 +36,12 @@ class OccupancyFilter {
     Vec3f lo(kInfinity);
     for (size_t i = 0; i < n; ++i) lo = min(lo, position(i));
     for (int a = 0; a < 3; ++a) origin_[a] = double(lo[a]) - grown;
-    // Cells of edge `reach`: a photon marks <= 27. Lookups let through on sphere-point (8 iterations, of
-    // 2.0 M asked; 98 % of them find nothing): 18 % with 64 bits per photon; 19 % with edge 2 reach
-    // (<= 8 cells); 24 % with 32 bits, 15 % with 128, 12 % with 512 (hash collisions where photons are
-    // sparse). On the pool, 57 % (its floor is covered).
-    inv_cell_ = 1 / grown;
+    // Cells of edge 2 reach: a photon marks <= 8. Lookups let through on sphere-point (8 iterations, of
+    // 2.0 M asked; 98 % of them find nothing): 19 % with 64 bits per photon; 18 % with edge `reach`
+    // (<= 27 cells, 3x the build time: 2.6 ms a pass at 25,000 photons); 24 % with 32 bits, 15 % with
+    // 128, 12 % with 512 (hash collisions where photons are sparse). On the pool, 61 % (its floor is
+    // covered).
+    inv_cell_ = 1 / (2 * grown);
     size_t words = 1;
     while (words < n) words *= 2;
     bits_.assign(words, 0);
@@ -48,7 +49,8 @@ class OccupancyFilter {
     for (size_t i = 0; i < n; ++i) {
       const Vec3f p = position(i);
       uint64_t c0[3], c1[3];
-      for (int a = 0; a < 3; ++a) c0[a] = cell(double(p[a]) - grown, a), c1[a] = cell(double(p[a]) + grown, a);
+      for (int a = 0; a < 3; ++a)
+        c0[a] = cell(double(p[a]) - grown, a), c1[a] = cell(double(p[a]) + grown, a);
       for (uint64_t x = c0[0]; x <= c1[0]; ++x)
         for (uint64_t y = c0[1]; y <= c1[1]; ++y)
           for (uint64_t z = c0[2]; z <= c1[2]; ++z) {

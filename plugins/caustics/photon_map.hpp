@@ -78,10 +78,23 @@ class PhotonKdTree {
     nodes_.assign((size_t(1) << (depth + 1)), Node{});
     lo_ = Vec3f(kInfinity), hi_ = Vec3f(-kInfinity);
     for (const Photon &p : photons) lo_ = min(lo_, p.position()), hi_ = max(hi_, p.position());
-    // Top levels on this thread, until there are enough subtrees to share out.
-    constexpr uint32_t kSerialLevels = 6;
-    std::vector<Range> pending;
-    split_top(Range{0, 0, n_}, kSerialLevels, pending);
+    // The top levels one level at a time (the nodes of a level in parallel), until there are enough
+    // subtrees to share out; then the subtrees. Each node's split depends only on its own range, so the
+    // tree is the same whatever runs where.
+    constexpr uint32_t kTopLevels = 6;
+    std::vector<Range> pending{Range{0, 0, n_}};
+    for (uint32_t level = 0; level < kTopLevels; ++level) {
+      std::vector<Range> next;
+      for (const Range &nd : pending)
+        if (nd.hi - nd.lo > kLeafSize) next.push_back(nd);
+      parallel(next.size(), [&](size_t i) { split_node(next[i]); });
+      pending.clear();
+      for (const Range &nd : next) {
+        const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
+        pending.push_back(Range{2 * nd.id + 1, nd.lo, mid});
+        pending.push_back(Range{2 * nd.id + 2, mid, nd.hi});
+      }
+    }
     parallel(pending.size(), [&](size_t i) { build_range(pending[i]); });
     filter_.build(n_, reach, [&](size_t i) { return photons_[i].position(); });
   }
@@ -162,18 +175,6 @@ class PhotonKdTree {
     std::nth_element(photons_ + nd.lo, photons_ + mid, photons_ + nd.hi,
                      [a](const Photon &x, const Photon &y) { return x.p[a] < y.p[a]; });
     nodes_[nd.id].split = photons_[mid].p[a];  // the children permute their ranges later: keep it
-  }
-
-  void split_top(const Range &nd, uint32_t levels, std::vector<Range> &out) {
-    if (nd.hi - nd.lo <= kLeafSize) return;
-    if (levels == 0) {
-      out.push_back(nd);
-      return;
-    }
-    split_node(nd);
-    const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
-    split_top(Range{2 * nd.id + 1, nd.lo, mid}, levels - 1, out);
-    split_top(Range{2 * nd.id + 2, mid, nd.hi}, levels - 1, out);
   }
 
   void build_range(const Range &root) {
