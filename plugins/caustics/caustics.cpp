@@ -33,7 +33,9 @@ const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix", nullp
 constexpr uint64_t kStreamCamera = 0;
 constexpr uint64_t kStreamPhoton = 0x70686f746f6e;  // "photon"
 
-constexpr uint64_t kPhotonPathsPerTask = 4096;
+// Photon paths per task: small enough that a pass of ~20,000 paths (the N_min floor) shares out evenly
+// over the workers (4096 left one of two workers idle for up to a seventh of the pass).
+constexpr uint64_t kPhotonPathsPerTask = 1024;
 constexpr uint64_t kPhotonsPerPathCap = 4;  // a task stops tracing when its buffer holds this many per path
 // N_max (spec 5): photon paths per pass when every pixel is useful. Passes larger than an image's
 // camera paths are spread over several iterations, so the photon : camera path ratio stays ~1.
