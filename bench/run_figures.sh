@@ -1,6 +1,6 @@
 #!/bin/bash
 # Every timing figure of docs/performance.md, in one serial run (a quiet machine: nothing else running).
-# Long: about an hour on 2 cores. Outputs: docs/bench-pt.txt, docs/overhead.csv, docs/many-lights/,
+# Long: about an hour on 2 cores. Outputs: docs/bench-pt.txt, docs/overhead-64.csv, docs/many-lights/,
 # docs/error-vs-time/<scene>/ (CSV, plot; reference and test EXRs are not committed).
 #   [STAGES="bench overhead lights error"] bash bench/run_figures.sh [REFERENCE_SECONDS=240] [TIMES=8,32]
 set -euo pipefail
@@ -16,8 +16,9 @@ echo "== nimbus.pt vs Embree rays/s"
 build/bin/nimbus_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true | tee docs/bench-pt.txt
 fi
 if stage overhead; then
-echo "== caustics overhead per iteration"
-$PY bench/overhead.py scenes/caustics/*.yaml --iterations 32 --runs 5 --out docs/overhead.csv
+echo "== caustics overhead per iteration (64 iterations: photon passes grow with the useful-pixel ratio,
+# which accumulates, so short renders understate the steady state)"
+$PY bench/overhead.py scenes/caustics/*.yaml --iterations 64 --runs 3 --out docs/overhead-64.csv
 fi
 if stage lights; then
 echo "== many lights"
