@@ -16,8 +16,9 @@ echo "== nimbus.pt vs Embree rays/s"
 build/bin/nimbus_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true | tee docs/bench-pt.txt
 fi
 if stage overhead; then
-echo "== caustics overhead per iteration (64 iterations: photon passes grow with the useful-pixel ratio,
-# which accumulates, so short renders understate the steady state)"
+# 64 iterations: photon passes grow with the useful-pixel ratio, which accumulates, so short renders
+# understate the steady state.
+echo "== caustics overhead per iteration"
 $PY bench/overhead.py scenes/caustics/*.yaml --iterations 64 --runs 3 --out docs/overhead-64.csv
 fi
 if stage lights; then
