@@ -167,6 +167,7 @@ class CausticsSolver final : public sdk::Integrator {
     }
     map_active_ = schedule_.map_active();
     map_pass_ = schedule_.passes();
+    radius_per_length_ = radius_per_length(theta_pix_, map_pass_);
     return NIMBUS_OK;
   }
 
@@ -648,7 +649,7 @@ class CausticsSolver final : public sdk::Integrator {
         lookup = cam.mis.append(rough);
         if (lookup) {
           if (cam.mis.rough_count == 1)
-            cam.radius = merge_radius(theta_pix_, cam.length, map_pass_, scene_radius_);
+            cam.radius = merge_radius(radius_per_length_, cam.length, scene_radius_);
           cam.r = cam.mis.rough_count == 1 ? cam.radius : cam.r * kRadiusGrowth;
         }
         // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
@@ -847,8 +848,9 @@ class CausticsSolver final : public sdk::Integrator {
   PhotonSchedule schedule_;
   std::vector<Photon> map_photons_;
   PhotonKdTree map_;
-  uint64_t map_paths_ = 0;  // photon paths behind the current map (Neff)
-  uint32_t map_pass_ = 0;   // its photon pass index j
+  uint64_t map_paths_ = 0;       // photon paths behind the current map (Neff)
+  uint32_t map_pass_ = 0;        // its photon pass index j
+  float radius_per_length_ = 0;  // merge radius per unit path length at pass j
   bool map_active_ = false;
   bool photons_saw_sharp_ = false;
   std::vector<float> useful_merge_, useful_total_;  // per pixel: accumulated lum of merges (Mp), beauty (Tp)

@@ -42,10 +42,8 @@ class OccupancyFilter {
     // 128, 12 % with 512 (hash collisions where photons are sparse). On the pool, 61 % (its floor is
     // covered).
     inv_cell_ = 1 / (2 * grown);
-    size_t words = 1;
-    while (words < n) words *= 2;
-    bits_.assign(words, 0);
-    mask_ = words * 64 - 1;
+    bits_.assign(n, 0);  // 64 bits per photon
+    slots_ = uint64_t(n) * 64;
     for (size_t i = 0; i < n; ++i) {
       const Vec3f p = position(i);
       uint64_t c0[3], c1[3];
@@ -78,12 +76,16 @@ class OccupancyFilter {
   uint64_t cell(double v, int a) const {
     return uint64_t(std::clamp((v - origin_[a]) * inv_cell_, 0.0, 4.6e18));
   }
+  // The cell's bit: its hash mapped onto [0, slots_) by a multiply-shift (Lemire), so the array needs
+  // no power-of-two size.
   uint64_t slot(uint64_t x, uint64_t y, uint64_t z) const {
-    return mix64(x * 0x9e3779b97f4a7c15ULL ^ y * 0xc2b2ae3d27d4eb4fULL ^ z * 0x165667b19e3779f9ULL) & mask_;
+    const uint64_t h =
+        mix64(x * 0x9e3779b97f4a7c15ULL ^ y * 0xc2b2ae3d27d4eb4fULL ^ z * 0x165667b19e3779f9ULL);
+    return uint64_t((unsigned __int128)h * slots_ >> 64);
   }
 
   std::vector<uint64_t> bits_;
-  uint64_t mask_ = 0;
+  uint64_t slots_ = 0;
   double origin_[3] = {0, 0, 0}, inv_cell_ = 0;
   float reach_ = -1;  // < 0: no filter
 };

@@ -14,12 +14,19 @@ inline constexpr float kRadiusAlpha = 0.75f;      // Knaus-Zwicker alpha: r^2 ~ 
 inline constexpr double kUsefulThreshold = 0.01;  // pixel useful iff Mp > tau * Tp
 inline constexpr uint32_t kMaxIdleLevel = 8;
 
-// Merge radius for a camera path whose first rough vertex lies at path length `ell` from the lens, at
-// photon pass j (1-based); theta_pix: the angular width of one pixel at the image centre. Clamped below
-// at 1e-6 of the scene radius.
+// Merge radius per unit path length at photon pass j (1-based): kRadiusPixels theta_pix j^((alpha-1)/2),
+// theta_pix the angular width of one pixel at the image centre. One pow per pass, not per camera path.
+inline float radius_per_length(float theta_pix, uint32_t j) {
+  return kRadiusPixels * theta_pix * std::pow(float(std::max(j, 1u)), (kRadiusAlpha - 1) / 2);
+}
+
+// Merge radius for a camera path whose first rough vertex lies at path length `ell` from the lens,
+// clamped below at 1e-6 of the scene radius.
+inline float merge_radius(float per_length, float ell, float scene_radius) {
+  return std::max(per_length * ell, 1e-6f * scene_radius);
+}
 inline float merge_radius(float theta_pix, float ell, uint32_t j, float scene_radius) {
-  const float r = kRadiusPixels * theta_pix * ell * std::pow(float(std::max(j, 1u)), (kRadiusAlpha - 1) / 2);
-  return std::max(r, 1e-6f * scene_radius);
+  return merge_radius(radius_per_length(theta_pix, j), ell, scene_radius);
 }
 
 struct ScheduleConfig {
