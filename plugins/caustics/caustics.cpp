@@ -43,7 +43,8 @@ constexpr uint64_t kMaxPhotonPaths = uint64_t(1) << 22;
 constexpr uint64_t kProbePaths = uint64_t(1) << 16;
 // Sharp vertices a probe task keeps for the emission target (beyond it: the box's sphere).
 constexpr size_t kSharpPointsPerTask = 16384;
-// Share of lookups whose radius the occupancy filter in front of the photon map covers (photon_map.hpp).
+// Share of lookups whose radius the occupancy filter in front of the photon map covers
+// (occupancy_filter.hpp).
 constexpr double kFilterShare = 0.95;
 
 inline bool has(nimbus_lobe_t lobes, nimbus_lobe_t bits) { return (lobes & bits) != 0; }
