@@ -16,13 +16,11 @@ import shutil
 import statistics
 import tempfile
 
-from nimbus_tools import exr_metadata, run
+from overhead import render
 
 
 def seconds(nimbus, scene, integrator, iterations, seed, out):
-    run([nimbus, "render", scene, "-o", out, "--integrator", integrator, "--iterations", str(iterations),
-         "--seed", str(seed), "-q"], echo=False)
-    return float(exr_metadata(out)["nimbus:seconds"])
+    return float(render(nimbus, scene, integrator, iterations, seed, out)["nimbus:seconds"])
 
 
 def main():

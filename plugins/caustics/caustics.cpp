@@ -779,8 +779,6 @@ class CausticsSolver final : public sdk::Integrator {
   // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel, MIS-weighted merges.
   __attribute__((noinline)) void merge(const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta,
                                        const CameraState &cam, uint32_t s, SampleRecord &rec) const {
-    const Vec3f q = Vec3f::load(ix.p);
-    if (!map_.may_hold(q, cam.r)) return;  // most lookups: before any of the set-up below
     const nimbus_host_t *h = host().get();
     const float r = cam.r, r2 = r * r;
     const float neff = float(map_paths_);
@@ -790,12 +788,15 @@ class CausticsSolver final : public sdk::Integrator {
     float wo_arr[3];
     wo.store(wo_arr);
     const float kernel_norm = 2 / (kPi * r2);
-    // Photons on the same flat surface carry the same quantised normal: skip decoding those.
-    const uint32_t ng_code = encode_octahedral(ng);
+    // Photons on the same flat surface carry the same quantised normal: skip decoding those. Encoded at
+    // the first photon found: most lookups find none (query() turns them away first).
+    uint32_t ng_code = 0;
+    bool ng_encoded = false;
     Rgb sum(0);  // without LightMix, one record entry per lookup
-    map_.query(q, r, [&](const Photon &ph, float d2) {
+    map_.query(Vec3f::load(ix.p), r, [&](const Photon &ph, float d2) {
       const uint32_t k = s + ph.depth();
       if (k > max_depth_) return;
+      if (!ng_encoded) ng_code = encode_octahedral(ng), ng_encoded = true;
       if (ph.normal != ng_code && !(dot(decode_octahedral(ph.normal), ng) > 0)) return;
       const Vec3f wp = decode_octahedral(ph.dir);
       float wp_arr[3], f[3], pdf_fwd = 0, pdf_rev = 0;

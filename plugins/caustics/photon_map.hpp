@@ -105,8 +105,8 @@ class PhotonKdTree {
   size_t index_bytes() const { return nodes_.size() * sizeof(Node) + filter_.bytes(); }
   float filter_reach() const { return filter_.reach(); }
 
-  // False only if no photon lies within r of q: the map's bounds, then the occupancy filter. Most
-  // lookups end here; query() asks it first too.
+  // False only if no photon lies within r of q: the map's bounds, then the occupancy filter. query()
+  // asks it first; most lookups end there.
   bool may_hold(const Vec3f &q, float r) const {
     if (n_ == 0 || !(r >= 0)) return false;
     const float r2 = r * r;
