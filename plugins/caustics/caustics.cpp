@@ -146,7 +146,6 @@ class CausticsSolver final : public sdk::Integrator {
     schedule_ = PhotonSchedule(cfg);
     useful_merge_.assign(armed_ ? size_t(width_) * height_ : 0, 0.0f);
     useful_total_.assign(useful_merge_.size(), 0.0f);
-    map_photons_.clear();
     map_ = PhotonKdTree();
     map_active_ = false;
     emitter_pdfs_known_ = false;
@@ -163,7 +162,7 @@ class CausticsSolver final : public sdk::Integrator {
       const auto t0 = std::chrono::steady_clock::now();
       if (nimbus_status_t s = photon_pass(paths); s != NIMBUS_OK) return s;
       stats_.photon_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      schedule_.pass_done(iteration, map_paths_, map_photons_.size());
+      schedule_.pass_done(iteration, map_paths_, map_.size());
       if (schedule_.passes() == 1 && !photons_saw_sharp_ && !camera_saw_sharp()) schedule_.set_dormant(true);
     }
     map_active_ = schedule_.map_active();
@@ -228,8 +227,6 @@ class CausticsSolver final : public sdk::Integrator {
           stats_.photons > 0 ? double(stats_.photon_bytes) / double(stats_.photons) : double(sizeof(Photon));
       progress_->stat_add(h, "caustics_bytes_per_photon", bytes);
     }
-    map_photons_.clear();
-    map_photons_.shrink_to_fit();
     map_ = PhotonKdTree();
   }
 
@@ -334,10 +331,10 @@ class CausticsSolver final : public sdk::Integrator {
       const float radius = target.radius * 1.05f + 1e-4f * scene_radius_;
       if (radius < scene_radius_) next_target_ = {target.center, radius};
     }
-    map_photons_.clear();
-    map_photons_.reserve(total);
+    std::vector<Photon> photons;  // the map copies them
+    photons.reserve(total);
     for (PhotonChunk &c : chunks) {
-      map_photons_.insert(map_photons_.end(), c.photons.begin(), c.photons.end());
+      photons.insert(photons.end(), c.photons.begin(), c.photons.end());
       std::vector<Photon>().swap(c.photons);
     }
     map_paths_ = done;
@@ -354,11 +351,11 @@ class CausticsSolver final : public sdk::Integrator {
     // only shrink from pass to pass), so nearly every lookup can ask it first.
     RadiusHistogram radii;
     for (RadiusHistogram &r : lookup_radii_) radii.add(r), r.clear();
-    map_.build(map_photons_, parallel, radii.quantile(kFilterShare));
+    map_.build(photons, parallel, radii.quantile(kFilterShare));
     if (progress_) progress_->report(h, paths, paths, "photons");
     stats_.photon_paths += done;
-    stats_.photons += map_photons_.size();
-    stats_.photon_bytes += map_photons_.size() * sizeof(Photon) + map_.index_bytes();
+    stats_.photons += map_.size();
+    stats_.photon_bytes += map_.bytes();
     ++stats_.passes;
     return NIMBUS_OK;
   }
@@ -793,7 +790,7 @@ class CausticsSolver final : public sdk::Integrator {
     uint32_t ng_code = 0;
     bool ng_encoded = false;
     Rgb sum(0);  // without LightMix, one record entry per lookup
-    map_.query(Vec3f::load(ix.p), r, [&](const Photon &ph, float d2) {
+    map_.query(Vec3f::load(ix.p), r, [&](const PhotonData &ph, float d2) {
       const uint32_t k = s + ph.depth();
       if (k > max_depth_) return;
       if (!ng_encoded) ng_code = encode_octahedral(ng), ng_encoded = true;
@@ -848,7 +845,6 @@ class CausticsSolver final : public sdk::Integrator {
   Sphere next_target_;  // emission target (emitters.hpp) from the next photon pass on
   uint32_t width_ = 0, height_ = 0;
   PhotonSchedule schedule_;
-  std::vector<Photon> map_photons_;
   PhotonKdTree map_;
   uint64_t map_paths_ = 0;       // photon paths behind the current map (Neff)
   uint32_t map_pass_ = 0;        // its photon pass index j

@@ -1,10 +1,11 @@
-// Photons and the photon map: an implicit balanced kd-tree over the photon array, permuted in place
-// (median split on the widest axis, leaves of at most 8 photons), queried with a per-query radius.
+// Photons and the photon map: an implicit balanced kd-tree over the photons in tree order (median split
+// on the widest axis, leaves of at most 8 photons), queried with a per-query radius.
 // A kd-tree rather than a hash grid because the merge radius varies over orders of magnitude within one
 // image (spec section 4). The tree is a pure function of the photon array: the top levels are split on
 // one thread, the subtrees below are built concurrently on disjoint ranges, so any thread count gives
-// the same tree. Lookups scan a separate array of positions in tree order (16-byte keys) and load a
-// photon's other 32 bytes only when it lies within r: on the pool a lookup that passes the occupancy
+// the same tree. It is built over 16-byte keys (position, index), which nth_element moves faster than
+// photons. Lookups scan an array of positions and load a photon's other 32 bytes only when it lies
+// within r: on the pool a lookup that passes the occupancy
 // filter tests ~15 photons to find ~0.4 (bench/photon_map_bench.cpp models it). A hash grid of cell
 // edge 4 r (prototyped in that benchmark) was only ~20 % faster there and needs one radius per pass.
 #pragma once
@@ -45,9 +46,8 @@ inline Vec3f decode_octahedral(uint32_t e) {
   return normalize(v);
 }
 
-// One stored photon: 44 bytes.
-struct Photon {
-  float p[3];       // position, world space
+// What a lookup reads of a photon besides its position: 32 bytes.
+struct PhotonData {
   uint32_t dir;     // octahedral: the incoming direction, pointing back to where the photon came from
   uint32_t normal;  // octahedral: geometric normal at p (side test)
   float power[3];   // flux carried, before division by the pass's photon path count
@@ -63,6 +63,12 @@ struct Photon {
     return (depth & 63u) | (prev_rough ? 64u : 0u) | (b_valid ? 128u : 0u) |
            (std::min(light, kMaxLight) << 8);
   }
+};
+static_assert(sizeof(PhotonData) == 32, "photon layout");
+
+// A photon as the photon tracer stores it: 44 bytes. The map keeps positions and the rest apart.
+struct Photon : PhotonData {
+  float p[3];  // position, world space
   Vec3f position() const { return Vec3f::load(p); }
 };
 static_assert(sizeof(Photon) == 44, "photon layout");
@@ -71,9 +77,9 @@ class PhotonKdTree {
  public:
   static constexpr size_t kLeafSize = 8;
 
-  // Permutes `photons` into tree order. The vector must outlive the tree and not change after. Queries
-  // with radii up to `reach` (if > 0) first ask an occupancy filter whether any photon is near.
-  void build(std::vector<Photon> &photons, const ParallelFor &parallel = serial_for, float reach = 0) {
+  // Copies `photons` into the map, in tree order: positions (12 bytes) and the rest (32 bytes) apart.
+  // Queries with radii up to `reach` (if > 0) first ask an occupancy filter whether any photon is near.
+  void build(const std::vector<Photon> &photons, const ParallelFor &parallel = serial_for, float reach = 0) {
     n_ = photons.size();
     uint32_t depth = 0;
     while (((n_ + (size_t(1) << depth) - 1) >> depth) > kLeafSize) ++depth;
@@ -105,20 +111,21 @@ class PhotonKdTree {
       }
     }
     parallel(pending.size(), [&](size_t i) { build_range(pending[i]); });
-    // Photons into tree order; the keys keep only positions, which lookups scan on their own (most
-    // photons a lookup tests are farther than r: their other 32 bytes are never loaded).
-    std::vector<Photon> ordered(n_);
-    for (size_t k = 0; k < n_; ++k) ordered[k] = photons[keys_[k].index];
-    photons.swap(ordered);
-    photons_ = photons.data();
-    filter_.build(n_, reach, [&](size_t i) { return photons_[i].position(); });
+    // Positions and the rest in tree order, apart: lookups scan positions, and most photons they test
+    // are farther than r, so their other 32 bytes are never loaded.
+    positions_.resize(n_);
+    data_.resize(n_);
+    for (size_t k = 0; k < n_; ++k)
+      positions_[k] = Vec3f::load(keys_[k].p), data_[k] = photons[keys_[k].index];
+    std::vector<Key>().swap(keys_);
+    filter_.build(n_, reach, [&](size_t i) { return positions_[i]; });
   }
 
   size_t size() const { return n_; }
-  const Photon *data() const { return photons_; }
-  // Bytes of index structure (besides the photons themselves).
-  size_t index_bytes() const {
-    return nodes_.size() * sizeof(Node) + keys_.size() * sizeof(Key) + filter_.bytes();
+  const PhotonData *data() const { return data_.data(); }  // in tree order
+  // Bytes of the map: photons, kd-tree nodes, occupancy filter.
+  size_t bytes() const {
+    return n_ * (sizeof(Vec3f) + sizeof(PhotonData)) + nodes_.size() * sizeof(Node) + filter_.bytes();
   }
   float filter_reach() const { return filter_.reach(); }
 
@@ -134,7 +141,7 @@ class PhotonKdTree {
     return filter_.may_hold(q, r);
   }
 
-  // Calls f(photon, squared distance) for every photon with |p - q|^2 <= r^2 (computed in float as
+  // Calls f(PhotonData, squared distance) for every photon with |p - q|^2 <= r^2 (computed in float as
   // dx*dx + dy*dy + dz*dz), in tree order.
   template <class F>
   void query(const Vec3f &q, float r, F &&f) const {
@@ -162,10 +169,10 @@ class PhotonKdTree {
         (right ? lo : hi) = mid;
       }
       for (uint32_t i = lo; i < hi; ++i) {
-        const float *p = keys_[i].p;
-        const float dx = p[0] - q.x, dy = p[1] - q.y, dz = p[2] - q.z;
+        const Vec3f &p = positions_[i];
+        const float dx = p.x - q.x, dy = p.y - q.y, dz = p.z - q.z;
         const float d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 <= r2) f(photons_[i], d2);
+        if (d2 <= r2) f(data_[i], d2);
       }
       if (top == 0) return;
       const Item it = stack[--top];
@@ -208,7 +215,6 @@ class PhotonKdTree {
     }
   }
 
-  Photon *photons_ = nullptr;
   size_t n_ = 0;
   struct Node {
     float split = 0;
@@ -217,10 +223,12 @@ class PhotonKdTree {
   std::vector<Node> nodes_;  // internal nodes in heap order
   struct Key {
     float p[3];      // the photon's position
-    uint32_t index;  // during the build: the photon's index in the caller's order
+    uint32_t index;  // the photon's index in the caller's order
   };
-  std::vector<Key> keys_;  // in tree order, as the photons
-  Vec3f lo_, hi_;          // bounds of all photons
+  std::vector<Key> keys_;         // during the build only
+  std::vector<Vec3f> positions_;  // in tree order
+  std::vector<PhotonData> data_;  // in tree order
+  Vec3f lo_, hi_;                 // bounds of all photons
   OccupancyFilter filter_;
 };
 
