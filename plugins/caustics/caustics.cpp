@@ -280,7 +280,8 @@ class CausticsSolver final : public sdk::Integrator {
     learn_emitter_pdfs();
     const uint32_t pass = schedule_.passes() + 1;
     if (next_target_.radius > 0)
-      emitters_.set_target(next_target_.center, next_target_.radius), next_target_ = {};
+      emitters_.set_target(next_target_.center, next_target_.radius, next_target_lo_, next_target_hi_),
+          next_target_ = {};
     const uint64_t tasks = (paths + kPhotonPathsPerTask - 1) / kPhotonPathsPerTask;
     std::vector<PhotonChunk> chunks(tasks);
     struct Job {
@@ -329,7 +330,11 @@ class CausticsSolver final : public sdk::Integrator {
       if (complete)
         if (const Sphere tight = ritter_bounding_sphere(points); tight.radius < target.radius) target = tight;
       const float radius = target.radius * 1.05f + 1e-4f * scene_radius_;
-      if (radius < scene_radius_) next_target_ = {target.center, radius};
+      if (radius < scene_radius_) {
+        next_target_ = {target.center, radius};
+        const Vec3f grow = (sharp_hi - sharp_lo) * 0.05f + Vec3f(1e-4f * scene_radius_);
+        next_target_lo_ = sharp_lo - grow, next_target_hi_ = sharp_hi + grow;
+      }
     }
     std::vector<Photon> photons;  // the map copies them
     photons.reserve(total);
@@ -382,7 +387,7 @@ class CausticsSolver final : public sdk::Integrator {
     float pdf_dir = es.pdf_dir;
     Rgb Le = Rgb::load(es.Le);
     // Infinite lights: the solver's own emission disk (emitters.hpp), same numbers as the host's.
-    const Vec3f org = infinite ? emitters_.disk_origin(dir0, ue[0], ue[1]) : Vec3f::load(es.org);
+    const Vec3f org = infinite ? emitters_.emission_origin(light, dir0, ue[0], ue[1]) : Vec3f::load(es.org);
     // Finite lights: the host's emission point, then a direction in the cone towards the target.
     if (const EmissionCone cone = infinite ? EmissionCone() : emitters_.cone(light, org); cone.active()) {
       dir0 = cone.sample(ue[2], ue[3]);
@@ -842,7 +847,8 @@ class CausticsSolver final : public sdk::Integrator {
   bool emitter_pdfs_known_ = false;
   float scene_radius_ = 1, theta_pix_ = 0;
   Vec3f scene_center_;
-  Sphere next_target_;  // emission target (emitters.hpp) from the next photon pass on
+  Sphere next_target_;                     // emission target (emitters.hpp) from the next photon pass on
+  Vec3f next_target_lo_, next_target_hi_;  // and the box around its sharp vertices
   uint32_t width_ = 0, height_ = 0;
   PhotonSchedule schedule_;
   PhotonKdTree map_;

@@ -6,8 +6,10 @@
 // surface on their first segment can only be stored after a rough-sharp-rough sequence, which path
 // tracing samples anyway (NEE at the rough vertex next to the light). So after the probe pass the
 // solver aims photons at the bounding sphere of the sharp surfaces the probe met ("the target"):
-//   sun:   an emission disk of the target's radius (P_pos = 1 / (pi R_e^2)) and the host's uniform cone
-//          (or delta direction); a receiver whose line towards the sun misses the disk has P_pos = 0;
+//   sun:   an emission disk of the target's radius (P_pos = 1 / (pi R_e^2)), or the smaller rectangle
+//          covering the projection of the box around the sharp vertices (P_pos = 1 / its area), and the
+//          host's uniform cone (or delta direction); a receiver whose line towards the sun misses the
+//          disk or rectangle has P_pos = 0;
 //   point, spot: directions uniform in the cone from the light that just covers the target (a spot keeps
 //          its own cone when that is narrower);
 //   area:  the host's uniform point on the emitter, then directions uniform in the cone from that point
@@ -69,9 +71,15 @@ struct Emitter {
   float power = 0;
   Vec3f axis;              // spot: the cone axis; sun: the direction photons travel
   float cos_theta_e = -1;  // spot / sun cone
-  float pdf_pos = 0;       // area: 1 / area (filled by the first photon pass); sun: 1 / (pi R_e^2)
+  float pdf_pos = 0;       // area: 1 / area (filled by the first photon pass); sun: 1 / (emission area)
   Vec3f position;          // point, spot
   EmissionCone cone;       // point, spot: the emission cone towards the target (inactive: the host's)
+  // sun: the emission rectangle [s0, s1] x [t0, t1] around the target's centre, in the plane
+  // perpendicular to each direction w, in the basis of w whose s axis follows rect_s; unused (the
+  // disk) where the disk is smaller.
+  bool use_rect = false;
+  Vec3f rect_s;
+  float rect[4] = {0, 0, 0, 0};  // s0, s1, t0, t1
   bool delta_position() const { return flags & NIMBUS_LIGHT_DELTA_POSITION; }
   bool delta_direction() const { return flags & NIMBUS_LIGHT_DELTA_DIRECTION; }
   bool infinite() const { return flags & NIMBUS_LIGHT_INFINITE; }
@@ -112,12 +120,18 @@ class EmitterSet {
   }
 
   // The emission target (see the top of this file): infinite lights emit from a disk perpendicular to
-  // their direction, centred on the projection of `center`, of radius `radius`; finite lights aim at
-  // the sphere (center, radius).
-  void set_target(const Vec3f &center, float radius) {
+  // their direction, centred on the projection of `center`, of radius `radius`, or from the rectangle
+  // that covers the projection of the box [lo, hi] (if given and smaller); finite lights aim at the
+  // sphere (center, radius).
+  void set_target(const Vec3f &center, float radius, const Vec3f &lo = Vec3f(kInfinity),
+                  const Vec3f &hi = Vec3f(-kInfinity)) {
     disk_center_ = center, disk_radius_ = radius;
     for (Emitter &e : emitters_) {
-      if (e.infinite()) e.pdf_pos = 1 / (kPi * sqr(radius));
+      if (e.infinite()) {
+        e.pdf_pos = 1 / (kPi * sqr(radius));
+        e.use_rect = false;
+        if (e.kind == EmitterKind::Sun) fit_rect(e, lo, hi);
+      }
       e.cone = {};
       if (e.kind != EmitterKind::Point && e.kind != EmitterKind::Spot) continue;
       const EmissionCone c = EmissionCone::towards(e.position, center, radius);
@@ -133,17 +147,29 @@ class EmitterSet {
   }
   const Vec3f &disk_center() const { return disk_center_; }
   float disk_radius() const { return disk_radius_; }
-  // A photon origin on the disk for an infinite light sending light along `w`, from the same two
-  // numbers as the host's disk (concentric map), outside the scene's bounding sphere.
-  Vec3f disk_origin(const Vec3f &w, float u0, float u1) const {
+  // A photon origin on the disk (or rectangle) of infinite light `l` sending light along `w`, from two
+  // uniform numbers (the disk: the host's concentric map), outside the scene's bounding sphere.
+  Vec3f emission_origin(uint32_t l, const Vec3f &w, float u0, float u1) const {
+    const Emitter &e = emitters_[l];
+    const float back = scene_radius_ + length(disk_center_ - scene_center_) + disk_radius_;
+    if (e.use_rect) {
+      const Frame f = Frame::from_normal_tangent(w, e.rect_s);
+      const float a = e.rect[0] + u0 * (e.rect[1] - e.rect[0]), b = e.rect[2] + u1 * (e.rect[3] - e.rect[2]);
+      return disk_center_ - w * back + f.s * a + f.t * b;
+    }
     const Frame f = Frame::from_normal(-w);
     const Vec2f d = sample_uniform_disk_concentric(u0, u1);
-    const float back = scene_radius_ + length(disk_center_ - scene_center_) + disk_radius_;
     return disk_center_ - w * back + (f.s * d.x + f.t * d.y) * disk_radius_;
   }
-  // Whether the line through p along w meets the disk.
-  bool on_disk(const Vec3f &p, const Vec3f &w) const {
+  // Whether the line through p along w meets the disk (or rectangle) of infinite light `l`.
+  bool on_target(uint32_t l, const Vec3f &p, const Vec3f &w) const {
+    const Emitter &e = emitters_[l];
     const Vec3f d = p - disk_center_;
+    if (e.use_rect) {
+      const Frame f = Frame::from_normal_tangent(w, e.rect_s);
+      const float a = dot(d, f.s), b = dot(d, f.t);
+      return a >= e.rect[0] && a <= e.rect[1] && b >= e.rect[2] && b <= e.rect[3];
+    }
     return length_squared(d - w * dot(d, w)) <= sqr(disk_radius_);
   }
   bool emits_photons() const { return !table_.empty(); }
@@ -176,7 +202,7 @@ class EmitterSet {
       case EmitterKind::Spot:
         return dot(w, e.axis) >= e.cos_theta_e ? sel * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
       case EmitterKind::Sun:
-        if (!on_disk(p, w)) return 0;
+        if (!on_target(l, p, w)) return 0;
         if (e.delta_direction()) return sel * e.pdf_pos;
         return dot(w, e.axis) >= e.cos_theta_e ? sel * e.pdf_pos * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
       case EmitterKind::Environment:
@@ -186,6 +212,40 @@ class EmitterSet {
   }
 
  private:
+  // The sun's rectangle: the bounds of the box's corners projected along the sun's axis, in the basis
+  // whose s axis follows the box edge that projects longest (a pool's water seen from an oblique sun:
+  // ~1.1x its projected area, where the disk around its sphere is ~2.3x). Directions within the sun's
+  // cone tilt the plane and its basis by about its half angle: a margin of a few times that angle times
+  // the box's farthest corner keeps every box point inside for all of them.
+  void fit_rect(Emitter &e, const Vec3f &lo, const Vec3f &hi) const {
+    if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return;
+    const Vec3f a = normalize(e.axis), ext = hi - lo;
+    Vec3f edge(1, 0, 0);
+    float longest = -1;
+    for (int k = 0; k < 3; ++k) {
+      Vec3f u(0, 0, 0);
+      u[k] = 1;
+      const float len = length(u - a * dot(u, a)) * ext[k];
+      if (len > longest) longest = len, edge = u;
+    }
+    const Frame f = Frame::from_normal_tangent(a, edge);
+    float r[4] = {kInfinity, -kInfinity, kInfinity, -kInfinity}, far = 0;
+    for (int c = 0; c < 8; ++c) {
+      const Vec3f d = Vec3f(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z) - disk_center_;
+      const float s = dot(d, f.s), t = dot(d, f.t);
+      r[0] = std::min(r[0], s), r[1] = std::max(r[1], s), r[2] = std::min(r[2], t), r[3] = std::max(r[3], t);
+      far = std::max(far, length(d));
+    }
+    // To first order the s axis turns by the half angle, the t axis by twice it: 3x for room.
+    const float sin_half = e.delta_direction() ? 0.0f : std::sqrt(std::max(0.0f, 1 - sqr(e.cos_theta_e)));
+    const float margin = 3 * sin_half * far + 1e-4f * scene_radius_;
+    r[0] -= margin, r[1] += margin, r[2] -= margin, r[3] += margin;
+    const float area = (r[1] - r[0]) * (r[3] - r[2]);
+    if (!(area > 0) || !(area < kPi * sqr(disk_radius_))) return;
+    e.use_rect = true, e.rect_s = f.s, e.pdf_pos = 1 / area;
+    std::copy(r, r + 4, e.rect);
+  }
+
   std::vector<Emitter> emitters_;
   AliasTable table_;
   Vec3f scene_center_, disk_center_;

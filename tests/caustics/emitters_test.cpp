@@ -1,7 +1,8 @@
 // The solver's emission target (emitters.hpp): photon directions of finite lights aimed at the bounding
 // sphere of the sharp surfaces. Checked: the cone sampler against its pdf (chi-square), that the cone
 // just covers the target, that it stays exact for a small target far away (narrow cones), and that
-// the camera side's lp equals the photon side's density for the directions photons are sent along.
+// the camera side's lp equals the photon side's density for the directions photons are sent along, and
+// that the sun's emission rectangle covers its box from every direction in the sun's cone.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -148,6 +149,50 @@ TEST(CausticsEmitters, CameraSideDensityEqualsPhotonSide) {
   EXPECT_FALSE(set[1].cone.active());
   EXPECT_FLOAT_EQ(set.lp(1, set[1].position, Vec3f(), set[1].axis, Vec3f()),
                   set.selection_pmf(1) * uniform_cone_pdf(set[1].cos_theta_e));
+}
+
+// The sun's emission rectangle (a pool's water: a flat 4 x 2 m box under an oblique sun): smaller than
+// the disk around the target's sphere; every box point is reachable from every direction in the sun's
+// cone; the camera side's lp along a photon's line equals the photon side's density, and is 0 for a
+// line that misses the rectangle.
+TEST(CausticsEmitters, SunRectangleCoversTheBox) {
+  for (const bool delta : {false, true}) {
+    std::vector<Emitter> lights(1);
+    Emitter &sun = lights[0];
+    sun.kind = EmitterKind::Sun, sun.power = 1, sun.axis = normalize(Vec3f(-0.35f, 0.55f, -1.0f));
+    sun.flags = NIMBUS_LIGHT_INFINITE | (delta ? NIMBUS_LIGHT_DELTA_DIRECTION : 0u);
+    sun.cos_theta_e = delta ? 1.0f : std::cos(0.5f * 0.53f * kPi / 180);
+    EmitterSet set;
+    set.build(lights, Vec3f(0, 0, 0), 20);
+    const Vec3f lo(-2, -1, -0.08f), hi(2, 1, 0.08f), center(0.1f, 0, 0);
+    const float radius = 1.05f * length(hi - center);
+    set.set_target(center, radius);  // no box: the disk
+    EXPECT_FALSE(set[0].use_rect);
+    EXPECT_FLOAT_EQ(set[0].pdf_pos, 1 / (kPi * radius * radius));
+    set.set_target(center, radius, lo, hi);
+    ASSERT_TRUE(set[0].use_rect);
+    const float area = 1 / set[0].pdf_pos;
+    const float projected = 8 * std::abs(sun.axis.z);  // the box's top face seen along the axis
+    EXPECT_LT(area, 0.55f * kPi * radius * radius) << "delta " << delta;
+    EXPECT_GT(area, projected);
+    EXPECT_LT(area, 1.25f * projected) << "delta " << delta;
+
+    Pcg32 rng(17 + delta);
+    const float pdf_dir = delta ? 1.0f : uniform_cone_pdf(sun.cos_theta_e);
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3f w = delta ? sun.axis
+                            : Frame::from_normal(sun.axis).to_world(
+                                  sample_uniform_cone(uniform(rng), uniform(rng), sun.cos_theta_e));
+      const Vec3f x(lo.x + uniform(rng) * (hi.x - lo.x), lo.y + uniform(rng) * (hi.y - lo.y),
+                    lo.z + uniform(rng) * (hi.z - lo.z));
+      ASSERT_TRUE(set.on_target(0, x, w)) << "box point not covered, delta " << delta;
+      const Vec3f o = set.emission_origin(0, w, uniform(rng), uniform(rng));
+      const Vec3f p = o + w * (20 + 5 * uniform(rng));
+      EXPECT_FLOAT_EQ(set.lp(0, Vec3f(), Vec3f(), w, p), set.selection_pmf(0) * set[0].pdf_pos * pdf_dir);
+    }
+    // A line well outside the rectangle: no photon travels along it.
+    EXPECT_EQ(set.lp(0, Vec3f(), Vec3f(), sun.axis, Vec3f(0, 6, 0)), 0.0f);
+  }
 }
 
 }  // namespace
