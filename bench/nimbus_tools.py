@@ -3,11 +3,12 @@ import subprocess
 import sys
 
 
-def run(cmd, echo=True):
-    """Runs cmd; exits with its stderr if it fails; returns its stdout."""
+def run(cmd, echo=True, env=None):
+    """Runs cmd (in env, or this process's environment); exits with its stderr if it fails; returns its
+    stdout."""
     if echo:
         print("+", " ".join(cmd), flush=True)
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     if proc.returncode != 0:
         sys.exit(f"command failed ({proc.returncode}): {' '.join(cmd)}\n{proc.stderr}")
     return proc.stdout

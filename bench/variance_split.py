@@ -49,6 +49,12 @@ def read_rgb(path, layer, tmp):
     return np.stack([read_channel(path, prefix + c, tmp) for c in "RGB"], axis=-1)
 
 
+def relative_variance(x, y, ref):
+    """Variance of one render from two renders x, y of different seeds, in relMSE units against ref."""
+    ok = np.isfinite(x).all(-1) & np.isfinite(y).all(-1) & np.isfinite(ref).all(-1)
+    return float(np.mean((x[ok] - y[ok]) ** 2 / 2 / (ref[ok] ** 2 + 0.01)))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("a")
@@ -66,7 +72,7 @@ def main():
     den = ref[ok] ** 2 + 0.01
 
     def rel_var(x, y):
-        return float(np.mean((x[ok] - y[ok]) ** 2 / 2 / den))
+        return relative_variance(x, y, ref)
 
     parts = {"beauty": (a, b)}
     if ca is not None:

@@ -38,7 +38,10 @@ struct ScheduleConfig {
   // +122 % per iteration on the pool scene (u = 0.6) and +70 % on the ring; the uncapped 2^22 more than
   // doubled render time. With 0.5 the photon work stays near a third of the camera work even when every
   // pixel is useful; noise at equal time is what matters, and more iterations per second make up for
-  // smaller maps. Metropolis guiding (next issue) wants large batches: revisit the cap with it.
+  // smaller maps. Variance x seconds at 32 iterations (bench/efficiency.py, docs/performance.md §4), ratio
+  // 0.25 / 0.5 / 1: pool 0.44 / 0.34 / 0.30, ring 0.043 / 0.026 / 0.017, sphere-point 0.051 / 0.051 /
+  // 0.056, sphere-area 0.045 / 0.043 / 0.050, glasses 0.22 / 0.20 / 0.26: 0.5 is near the optimum on
+  // all five. Metropolis guiding (next issue) wants large batches: revisit the cap with it.
   // The probe (2^16 paths) is not capped, so small images still interleave several camera passes per
   // photon pass.
   double photon_paths_per_camera_path = 0.5;
