@@ -153,22 +153,22 @@ struct CameraMis {
     if (lookup && n_terms < kMaxCameraTerms) terms[n_terms++] = CameraTerm{g * mis(eta), j};
   }
   // S_cam: sum of R over the merge techniques eligible for a path of k segments that ends here (an
-  // emitter hit at x_k, or NEE from x_{k-1}): E3 on the camera vertices after s.
+  // emitter hit at x_k, or NEE from x_{k-1}): E3 on the camera vertices after s, and x_{k-1} (the last
+  // vertex appended, the photon's first) sharp: the photon tracer ends paths whose first vertex is rough.
   float s_cam(uint32_t k) const {
     float s = 0;
-    for (uint32_t i = 0; i < n_terms; ++i) {
-      const CameraTerm &t = terms[i];
-      if (t.has_sharp && !t.dead && k - t.s <= d_photon) s += t.R;
-    }
+    for (uint32_t i = 0; i < n_terms; ++i)
+      if (live(terms[i], k)) s += terms[i].R;
     return s;
   }
   // Whether any merge technique is eligible for a path of k segments ending here (caustics element).
   bool eligible(uint32_t k) const {
-    for (uint32_t i = 0; i < n_terms; ++i) {
-      const CameraTerm &t = terms[i];
-      if (t.has_sharp && !t.dead && k - t.s <= d_photon) return true;
-    }
+    for (uint32_t i = 0; i < n_terms; ++i)
+      if (live(terms[i], k)) return true;
     return false;
+  }
+  bool live(const CameraTerm &t, uint32_t k) const {
+    return t.has_sharp && !t.dead && !t.last_rough && k - t.s <= d_photon;
   }
   // Sum of R over the terms that stay merge techniques when a photon of depth k - s completes the path
   // at the current lookup vertex x_s (after append): the photon supplies the sharp vertex.

@@ -120,6 +120,7 @@ double area_at(const SyntheticPath &p, uint32_t s) {
 // The merge at s is a technique (E1-E4; lookups at every rough vertex).
 bool merge_eligible(const SyntheticPath &p, uint32_t s) {
   if (!(p.lp > 0) || s < 1 || s + 2 > p.k || !p.rough(s)) return false;
+  if (p.rough(p.k - 1)) return false;  // the photon's first vertex must be sharp
   bool sharp = false;
   for (uint32_t j = s + 1; j < p.k; ++j) {
     sharp = sharp || !p.rough(j);
@@ -184,6 +185,7 @@ Weights production(const SyntheticPath &p) {
       const float nk = float(p.nk());
       E = photon_nee_term(true, nk, d2, lp, c_in);
     }
+    if (rough && j == k - 1) break;  // a path whose first vertex is rough ends there
     const bool stored = rough && had_sharp && (k - j) <= p.d_photon;
     at[j] = PhotonAt{stored, pm.A, pm.B, pm.b_valid, prev_rough};
     if (rough && prev_rough) break;
@@ -315,6 +317,36 @@ TEST(CausticsMis, SunThroughWaterAfterSeveralDiffuseBouncesHasAMergeTechnique) {
   EXPECT_TRUE(cm.eligible(7));
   const float w = hit_weight(0.0f, cm.s_cam(7), lp);
   EXPECT_LT(w, 1e-6f);
+}
+
+// A path whose vertex next to the light is rough (light -> floor -> glass -> floor -> camera) has no merge
+// technique: the photon tracer ends such paths at that first vertex, so the camera side gives them to
+// path tracing (NEE from the first floor vertex samples them), and nimbus.pt's weights apply.
+TEST(CausticsMis, RoughFirstPhotonVertexHasNoMergeTechnique) {
+  CameraMis cm;
+  const bool rough[] = {true, false, true};  // x_1 floor (lookup), x_2 glass, x_3 floor
+  for (uint32_t j = 1; j <= 3; ++j) {
+    if (j >= 2) cm.arrive(0.8f);
+    const bool lookup = cm.append(rough[j - 1]);
+    if (j == 1) {
+      EXPECT_FALSE(cm.eligible(2));  // no sharp vertex after x_1
+    } else if (j == 2) {
+      EXPECT_TRUE(cm.eligible(3));  // light -> glass -> floor: a caustic photon path
+    }
+    cm.scatter(0.8f, rough[j - 1] ? 0.25f : 1.0f, rough[j - 1] ? 0.25f : 1.0f, lookup, j, 100.0f);
+  }
+  // NEE from x_3 (rough, next to the light): no merge; the same path with x_3 sharp would have one.
+  EXPECT_FALSE(cm.eligible(4));
+  EXPECT_EQ(cm.s_cam(4), 0.0f);
+  CameraMis sharp_end;
+  const bool rough2[] = {true, false, false};
+  for (uint32_t j = 1; j <= 3; ++j) {
+    if (j >= 2) sharp_end.arrive(0.8f);
+    const bool lookup = sharp_end.append(rough2[j - 1]);
+    sharp_end.scatter(0.8f, rough2[j - 1] ? 0.25f : 1.0f, rough2[j - 1] ? 0.25f : 1.0f, lookup, j, 100.0f);
+  }
+  EXPECT_TRUE(sharp_end.eligible(4));
+  EXPECT_GT(sharp_end.s_cam(4), 0.0f);
 }
 
 }  // namespace
