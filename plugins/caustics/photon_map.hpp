@@ -5,9 +5,9 @@
 // one thread, the subtrees below are built concurrently on disjoint ranges, so any thread count gives
 // the same tree. It is built over 16-byte keys (position, index), which nth_element moves faster than
 // photons. Lookups scan an array of positions and load a photon's other 32 bytes only when it lies
-// within r: on the pool a lookup that passes the occupancy
-// filter tests ~15 photons to find ~0.4 (bench/photon_map_bench.cpp models it). A hash grid of cell
-// edge 4 r (prototyped in that benchmark) was only ~20 % faster there and needs one radius per pass.
+// within r: on the pool a lookup that passes the occupancy filter tests ~15 photons to find ~0.4
+// (bench/photon_map_bench.cpp models it). A hash grid of cell edge 4 r (prototyped in that benchmark)
+// was only ~20 % faster there and needs one radius per pass.
 #pragma once
 
 #include <algorithm>
