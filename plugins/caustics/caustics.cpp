@@ -279,8 +279,9 @@ class CausticsSolver final : public sdk::Integrator {
     const nimbus_host_t *h = host().get();
     learn_emitter_pdfs();
     const uint32_t pass = schedule_.passes() + 1;
-    if (next_target_.radius > 0)
-      emitters_.set_target(next_target_.center, next_target_.radius, next_target_lo_, next_target_hi_),
+    if (next_target_.sphere.radius > 0)
+      emitters_.set_target(next_target_.sphere.center, next_target_.sphere.radius, next_target_.lo,
+                           next_target_.hi),
           next_target_ = {};
     const uint64_t tasks = (paths + kPhotonPathsPerTask - 1) / kPhotonPathsPerTask;
     std::vector<PhotonChunk> chunks(tasks);
@@ -331,9 +332,8 @@ class CausticsSolver final : public sdk::Integrator {
         if (const Sphere tight = ritter_bounding_sphere(points); tight.radius < target.radius) target = tight;
       const float radius = target.radius * 1.05f + 1e-4f * scene_radius_;
       if (radius < scene_radius_) {
-        next_target_ = {target.center, radius};
         const Vec3f grow = (sharp_hi - sharp_lo) * 0.05f + Vec3f(1e-4f * scene_radius_);
-        next_target_lo_ = sharp_lo - grow, next_target_hi_ = sharp_hi + grow;
+        next_target_ = {{target.center, radius}, sharp_lo - grow, sharp_hi + grow};
       }
     }
     std::vector<Photon> photons;  // the map copies them
@@ -853,8 +853,10 @@ class CausticsSolver final : public sdk::Integrator {
   bool emitter_pdfs_known_ = false;
   float scene_radius_ = 1, theta_pix_ = 0;
   Vec3f scene_center_;
-  Sphere next_target_;                     // emission target (emitters.hpp) from the next photon pass on
-  Vec3f next_target_lo_, next_target_hi_;  // and the box around its sharp vertices
+  struct Target {
+    Sphere sphere;
+    Vec3f lo{kInfinity}, hi{-kInfinity};  // the box around its sharp vertices (the sun's rectangle)
+  } next_target_;                         // emission target (emitters.hpp) from the next photon pass on
   uint32_t width_ = 0, height_ = 0;
   PhotonSchedule schedule_;
   PhotonKdTree map_;

@@ -87,10 +87,10 @@ class PhotonKdTree {
     lo_ = Vec3f(kInfinity), hi_ = Vec3f(-kInfinity);
     // The tree is built over 16-byte keys (position, photon index), which nth_element moves faster than
     // 44-byte photons; the same comparisons on the same positions give the same permutation.
-    keys_.resize(n_);
+    std::vector<Key> keys(n_);
     for (size_t i = 0; i < n_; ++i) {
       const Vec3f p = photons[i].position();
-      keys_[i] = Key{{p.x, p.y, p.z}, uint32_t(i)};
+      keys[i] = Key{{p.x, p.y, p.z}, uint32_t(i)};
       lo_ = min(lo_, p), hi_ = max(hi_, p);
     }
     // The top levels one level at a time (the nodes of a level in parallel), until there are enough
@@ -102,7 +102,7 @@ class PhotonKdTree {
       std::vector<Range> next;
       for (const Range &nd : pending)
         if (nd.hi - nd.lo > kLeafSize) next.push_back(nd);
-      parallel(next.size(), [&](size_t i) { split_node(next[i]); });
+      parallel(next.size(), [&](size_t i) { split_node(keys.data(), next[i]); });
       pending.clear();
       for (const Range &nd : next) {
         const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
@@ -110,14 +110,12 @@ class PhotonKdTree {
         pending.push_back(Range{2 * nd.id + 2, mid, nd.hi});
       }
     }
-    parallel(pending.size(), [&](size_t i) { build_range(pending[i]); });
+    parallel(pending.size(), [&](size_t i) { build_range(keys.data(), pending[i]); });
     // Positions and the rest in tree order, apart: lookups scan positions, and most photons they test
     // are farther than r, so their other 32 bytes are never loaded.
     positions_.resize(n_);
     data_.resize(n_);
-    for (size_t k = 0; k < n_; ++k)
-      positions_[k] = Vec3f::load(keys_[k].p), data_[k] = photons[keys_[k].index];
-    std::vector<Key>().swap(keys_);
+    for (size_t k = 0; k < n_; ++k) positions_[k] = Vec3f::load(keys[k].p), data_[k] = photons[keys[k].index];
     filter_.build(n_, reach, [&](size_t i) { return positions_[i]; });
   }
 
@@ -185,30 +183,34 @@ class PhotonKdTree {
     size_t id, lo, hi;
   };
 
-  // Partitions one node: median on the widest axis of the range's bounds.
-  void split_node(const Range &nd) {
+  struct Key {
+    float p[3];      // the photon's position
+    uint32_t index;  // the photon's index in the caller's order
+  };
+
+  // Partitions one node of `keys`: median on the widest axis of the range's bounds.
+  void split_node(Key *keys, const Range &nd) {
     Vec3f lo(kInfinity), hi(-kInfinity);
     for (size_t i = nd.lo; i < nd.hi; ++i) {
-      const Vec3f p = Vec3f::load(keys_[i].p);
+      const Vec3f p = Vec3f::load(keys[i].p);
       lo = min(lo, p), hi = max(hi, p);
     }
     const Vec3f ext = hi - lo;
     const uint32_t a = ext.x >= ext.y && ext.x >= ext.z ? 0u : (ext.y >= ext.z ? 1u : 2u);
     nodes_[nd.id].axis = a;
     const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
-    Key *k = keys_.data();
-    std::nth_element(k + nd.lo, k + mid, k + nd.hi,
+    std::nth_element(keys + nd.lo, keys + mid, keys + nd.hi,
                      [a](const Key &x, const Key &y) { return x.p[a] < y.p[a]; });
-    nodes_[nd.id].split = k[mid].p[a];  // the children permute their ranges later: keep it
+    nodes_[nd.id].split = keys[mid].p[a];  // the children permute their ranges later: keep it
   }
 
-  void build_range(const Range &root) {
+  void build_range(Key *keys, const Range &root) {
     std::vector<Range> stack{root};
     while (!stack.empty()) {
       const Range nd = stack.back();
       stack.pop_back();
       if (nd.hi - nd.lo <= kLeafSize) continue;
-      split_node(nd);
+      split_node(keys, nd);
       const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
       stack.push_back(Range{2 * nd.id + 1, nd.lo, mid});
       stack.push_back(Range{2 * nd.id + 2, mid, nd.hi});
@@ -220,12 +222,7 @@ class PhotonKdTree {
     float split = 0;
     uint32_t axis = 0;
   };
-  std::vector<Node> nodes_;  // internal nodes in heap order
-  struct Key {
-    float p[3];      // the photon's position
-    uint32_t index;  // the photon's index in the caller's order
-  };
-  std::vector<Key> keys_;         // during the build only
+  std::vector<Node> nodes_;       // internal nodes in heap order
   std::vector<Vec3f> positions_;  // in tree order
   std::vector<PhotonData> data_;  // in tree order
   Vec3f lo_, hi_;                 // bounds of all photons
