@@ -97,18 +97,20 @@ inline float photon_nee_term(bool nee_possible, float nk, float d2, float lp, fl
   return nee_possible && lp > 0 ? mis(nk * d2 / (lp * c_in)) : 0.0f;
 }
 
-// One pending camera-side merge term (a merge technique at camera vertex s).
+// One pending camera-side merge term (a merge technique at camera vertex s). No default member
+// initialisers: a camera path's CameraMis leaves its unused terms uninitialised instead of zeroing 660
+// bytes per path.
 struct CameraTerm {
-  float R = 0;
-  uint32_t s = 0;           // the camera vertex index that created it
-  bool has_sharp = false;   // a sharp vertex after x_s
-  bool last_rough = false;  // the last appended vertex was rough
-  bool dead = false;        // two adjacent rough vertices after x_s: no merge at s for longer paths
+  float R;
+  uint32_t s;       // the camera vertex index that created it
+  bool has_sharp;   // a sharp vertex after x_s
+  bool last_rough;  // the last appended vertex was rough
+  bool dead;        // two adjacent rough vertices after x_s: no merge at s for longer paths
 };
 
 // Camera-side state of one camera path (spec 3.3, "camera side").
 struct CameraMis {
-  CameraTerm terms[kMaxCameraTerms];
+  CameraTerm terms[kMaxCameraTerms];  // [0, n_terms) in use
   uint32_t n_terms = 0;
   uint32_t rough_count = 0;                // rough vertices among x_1 .. x_j (after append)
   uint32_t d_photon = kPhotonMaxVertices;  // the photon tracer's D_photon (tests vary it)
@@ -150,7 +152,8 @@ struct CameraMis {
       terms[n++] = t;
     }
     n_terms = n;
-    if (lookup && n_terms < kMaxCameraTerms) terms[n_terms++] = CameraTerm{g * mis(eta), j};
+    if (lookup && n_terms < kMaxCameraTerms)
+      terms[n_terms++] = CameraTerm{g * mis(eta), j, false, false, false};
   }
   // S_cam: sum of R over the merge techniques eligible for a path of k segments that ends here (an
   // emitter hit at x_k, or NEE from x_{k-1}): E3 on the camera vertices after s, and x_{k-1} (the last
