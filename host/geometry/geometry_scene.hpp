@@ -100,7 +100,7 @@ inline Vec3f offset_origin(const Vec3f &p, const Vec3f &ng, float eps, const Vec
   const Vec3f offset = ng * (dot(ng, dir) >= 0 ? eps : -eps);
   Vec3f o = p + offset;
   const auto away = [](float v, float d) {
-    return d > 0 ? std::nextafter(v, kInfinity) : d < 0 ? std::nextafter(v, -kInfinity) : v;
+    return d > 0 ? next_float(v, true) : d < 0 ? next_float(v, false) : v;
   };
   return {away(o.x, offset.x), away(o.y, offset.y), away(o.z, offset.z)};
 }

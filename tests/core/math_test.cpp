@@ -1,9 +1,13 @@
 // core/math.hpp: atan2_fast (environment lookups) against libm's atan2 in double, over every octant,
-// the axes, signed zeros and magnitudes from denormal to huge.
+// the axes, signed zeros and magnitudes from denormal to huge; next_float against std::nextafter.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include "core/math.hpp"
 
@@ -31,6 +35,38 @@ TEST(Atan2Fast, AxesZerosAndNanAsLibm) {
   EXPECT_NEAR(atan2_fast(-0.0f, -1.0f), -kPi, 2e-7);
   EXPECT_TRUE(std::isnan(atan2_fast(std::numeric_limits<float>::quiet_NaN(), 1.0f)));
   EXPECT_NEAR(atan2_fast(1.0f, std::numeric_limits<float>::infinity()), 0.0f, 1e-30f);
+}
+
+// next_float equals std::nextafter towards +-infinity, bit for bit, for every finite float: random bit
+// patterns over all exponents, and the edges (signed zeros, smallest subnormals, the largest float, the
+// normal/subnormal boundary, powers of two where the ulp changes).
+TEST(NextFloat, AsNextafterForEveryFiniteFloat) {
+  std::mt19937 g(3);
+  std::vector<float> values = {0.0f,
+                               -0.0f,
+                               0x1p-149f,
+                               -0x1p-149f,
+                               0x1p-126f,
+                               -0x1p-126f,
+                               std::numeric_limits<float>::max(),
+                               -std::numeric_limits<float>::max(),
+                               1.0f,
+                               -1.0f,
+                               0x1p24f,
+                               -0x1p-24f,
+                               1e4f,
+                               -3.5e-20f};
+  while (values.size() < 200000) {
+    const float v = std::bit_cast<float>(uint32_t(g()));
+    if (std::isfinite(v)) values.push_back(v);
+  }
+  for (float v : values)
+    for (bool up : {true, false}) {
+      const float want = std::nextafter(v, up ? kInfinity : -kInfinity);
+      ASSERT_EQ(std::bit_cast<uint32_t>(next_float(v, up)), std::bit_cast<uint32_t>(want)) << v << " " << up;
+    }
+  EXPECT_EQ(next_float(kInfinity, true), kInfinity);
+  EXPECT_TRUE(std::isnan(next_float(std::numeric_limits<float>::quiet_NaN(), true)));
 }
 
 }  // namespace
