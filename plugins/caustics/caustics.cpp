@@ -336,15 +336,6 @@ class CausticsSolver final : public sdk::Integrator {
         next_target_ = {{target.center, radius}, sharp_lo - grow, sharp_hi + grow};
       }
     }
-    std::vector<Photon> photons;  // the map copies them
-    photons.reserve(total);
-    for (PhotonChunk &c : chunks) {
-      photons.insert(photons.end(), c.photons.begin(), c.photons.end());
-      std::vector<Photon>().swap(c.photons);
-    }
-    map_paths_ = done;
-    photons_saw_sharp_ = photons_saw_sharp_ || sharp;
-    map_ = PhotonKdTree();
     const ParallelFor parallel = [this](size_t count, const std::function<void(size_t)> &f) {
       const auto task = [](const nimbus_thread_ctx_t *, uint64_t b, uint64_t e, void *user) {
         const auto &fn = *static_cast<const std::function<void(size_t)> *>(user);
@@ -352,6 +343,17 @@ class CausticsSolver final : public sdk::Integrator {
       };
       tasks_->parallel_for(host().get(), count, 1, task, const_cast<std::function<void(size_t)> *>(&f));
     };
+    // The chunks in task order, copied concurrently.
+    std::vector<Photon> photons(total);  // the map copies them
+    std::vector<size_t> offset(chunks.size() + 1, 0);
+    for (size_t i = 0; i < chunks.size(); ++i) offset[i + 1] = offset[i] + chunks[i].photons.size();
+    parallel(chunks.size(), [&](size_t i) {
+      std::copy(chunks[i].photons.begin(), chunks[i].photons.end(), photons.begin() + ptrdiff_t(offset[i]));
+      std::vector<Photon>().swap(chunks[i].photons);
+    });
+    map_paths_ = done;
+    photons_saw_sharp_ = photons_saw_sharp_ || sharp;
+    map_ = PhotonKdTree();
     // The filter's reach: the radius 95 % of the lookups since the last pass stayed within (radii
     // only shrink from pass to pass), so nearly every lookup can ask it first.
     RadiusHistogram radii;

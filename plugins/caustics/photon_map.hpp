@@ -99,11 +99,18 @@ class PhotonKdTree {
     // The tree is built over 16-byte keys (position, photon index), which nth_element moves faster than
     // 44-byte photons; the same comparisons on the same positions give the same permutation.
     std::vector<Key> keys(n_);
-    for (size_t i = 0; i < n_; ++i) {
-      const Vec3f p = photons[i].position();
-      keys[i] = Key{{p.x, p.y, p.z}, uint32_t(i)};
-      lo_ = min(lo_, p), hi_ = max(hi_, p);
-    }
+    // Keys and bounds in chunks (serial work here is time the camera pass waits for).
+    constexpr size_t kChunk = 8192;
+    const size_t chunks = (n_ + kChunk - 1) / kChunk;
+    std::vector<Vec3f> chunk_lo(chunks, Vec3f(kInfinity)), chunk_hi(chunks, Vec3f(-kInfinity));
+    parallel(chunks, [&](size_t c) {
+      for (size_t i = c * kChunk; i < std::min(n_, (c + 1) * kChunk); ++i) {
+        const Vec3f p = photons[i].position();
+        keys[i] = Key{{p.x, p.y, p.z}, uint32_t(i)};
+        chunk_lo[c] = min(chunk_lo[c], p), chunk_hi[c] = max(chunk_hi[c], p);
+      }
+    });
+    for (size_t c = 0; c < chunks; ++c) lo_ = min(lo_, chunk_lo[c]), hi_ = max(hi_, chunk_hi[c]);
     // The top levels one level at a time (the nodes of a level in parallel), until there are enough
     // subtrees to share out; then the subtrees. Each node's split depends only on its own range, so the
     // tree is the same whatever runs where.
@@ -125,23 +132,27 @@ class PhotonKdTree {
     // never loaded.
     blocks_.assign(leaves, LeafBlock{});
     leaf_begin_.resize(leaves + 1);
-    for (size_t l = 0; l < leaves; ++l) {
-      // The leaf's range, as the builder's halving made it: leaf l's begin is the sum of the sizes of
-      // the leaves before it, which halving computes top-down.
-      size_t lo = 0, hi = n_;
-      for (uint32_t b = depth_; b-- > 0;) {
-        const size_t mid = lo + (hi - lo) / 2;
-        ((l >> b) & 1 ? lo : hi) = mid;
-      }
-      leaf_begin_[l] = uint32_t(lo);
-      LeafBlock &blk = blocks_[l];
-      for (size_t k = lo; k < hi; ++k)
-        for (int a = 0; a < 3; ++a) blk.p[a][k - lo] = keys[k].p[a];
-    }
-    leaf_begin_[leaves] = uint32_t(n_);
     data_.resize(n_);
-    for (size_t k = 0; k < n_; ++k) data_[k] = photons[keys[k].index];
-    filter_.build(n_, reach, [&](size_t i) { return Vec3f::load(keys[i].p); });
+    constexpr size_t kLeavesPerTask = 1024;
+    parallel((leaves + kLeavesPerTask - 1) / kLeavesPerTask, [&](size_t t) {
+      for (size_t l = t * kLeavesPerTask; l < std::min(leaves, (t + 1) * kLeavesPerTask); ++l) {
+        // The leaf's range, as the builder's halving made it (bit b of l: the branch at depth_ - 1 - b).
+        size_t lo = 0, hi = n_;
+        for (uint32_t b = depth_; b-- > 0;) {
+          const size_t mid = lo + (hi - lo) / 2;
+          ((l >> b) & 1 ? lo : hi) = mid;
+        }
+        leaf_begin_[l] = uint32_t(lo);
+        LeafBlock &blk = blocks_[l];
+        for (size_t k = lo; k < hi; ++k) {
+          for (int a = 0; a < 3; ++a) blk.p[a][k - lo] = keys[k].p[a];
+          data_[k] = photons[keys[k].index];
+        }
+      }
+    });
+    leaf_begin_[leaves] = uint32_t(n_);
+    filter_.build(
+        n_, reach, [&](size_t i) { return Vec3f::load(keys[i].p); }, parallel);
   }
 
   size_t size() const { return n_; }

@@ -106,7 +106,8 @@ TEST(CausticsPhotonMap, RadiusQueriesEqualBruteForce) {
 TEST(CausticsPhotonMap, FilteredQueriesEqualBruteForce) {
   std::mt19937_64 g(7);
   for (float offset : {0.0f, 1e4f}) {
-    for (size_t n : {size_t(1), size_t(9), size_t(5000)}) {
+    // 20,000: above OccupancyFilter::kParallelPhotons, marked in two halves.
+    for (size_t n : {size_t(1), size_t(9), size_t(5000), size_t(20000)}) {
       for (Layout layout :
            {Layout::Uniform, Layout::Clustered, Layout::Coplanar, Layout::Collinear, Layout::Duplicates}) {
         std::vector<Photon> original = make_photons(n, layout, g);
@@ -205,12 +206,15 @@ TEST(CausticsPhotonMap, RadiusHistogramQuantile) {
   EXPECT_EQ(empty.quantile(0.95), 0.0f);
 }
 
-// The tree (photon order) is the same whether its subtrees are built by one or many threads.
+// The tree (photon order) and the occupancy filter are the same whether they are built by one or many
+// threads.
 TEST(CausticsPhotonMap, TreeIndependentOfThreads) {
   std::mt19937_64 g(3);
   const std::vector<Photon> original = make_photons(50000, Layout::Clustered, g);
+  static_assert(50000 >= OccupancyFilter::kParallelPhotons, "the filter's parallel path");
+  const float reach = 0.002f;
   PhotonKdTree ta, tb;
-  ta.build(original);
+  ta.build(original, serial_for, reach);
   const ParallelFor threads = [](size_t count, const std::function<void(size_t)> &fn) {
     std::vector<std::thread> pool;
     for (unsigned t = 0; t < 8; ++t)
@@ -219,9 +223,23 @@ TEST(CausticsPhotonMap, TreeIndependentOfThreads) {
       });
     for (auto &th : pool) th.join();
   };
-  tb.build(original, threads);
+  tb.build(original, threads, reach);
   ASSERT_EQ(ta.size(), tb.size());
+  ASSERT_EQ(ta.bytes(), tb.bytes());
   for (size_t i = 0; i < ta.size(); ++i) ASSERT_EQ(ta.data()[i].bits, tb.data()[i].bits) << i;
+  // The same filter bits: the same answer everywhere, near photons and away from them.
+  std::uniform_real_distribution<float> u(-1.2f, 1.2f), share(0, 1);
+  size_t held = 0;
+  for (int i = 0; i < 100000; ++i) {
+    Vec3f q(u(g), u(g), u(g));
+    if (i % 2 == 0) q = original[size_t(i) % original.size()].position() + Vec3f(u(g), u(g), u(g)) * 0.01f;
+    const float r = reach * share(g);
+    const bool a = ta.may_hold(q, r);
+    ASSERT_EQ(a, tb.may_hold(q, r)) << i;
+    held += a;
+  }
+  EXPECT_GT(held, 1000u);
+  EXPECT_LT(held, 99000u);
 }
 
 TEST(CausticsPhotonMap, OctahedralDirections) {
