@@ -1,25 +1,22 @@
 // Photons and the photon map: an implicit balanced kd-tree over the photons in tree order (median split
-// on the widest axis, every leaf at the same depth with 4 to 8 photons), queried with a per-query radius.
+// on the widest axis, leaves of at most 8 photons), queried with a per-query radius.
 // A kd-tree rather than a hash grid because the merge radius varies over orders of magnitude within one
 // image (spec section 4). The tree is a pure function of the photon array: the top levels are split on
 // one thread, the subtrees below are built concurrently on disjoint ranges, so any thread count gives
 // the same tree. It is built over 16-byte keys (position, index), which nth_element moves faster than
-// photons. Every leaf at one depth lets a lookup descend on node indices alone (no ranges); leaves keep
-// positions as 8 x, 8 y, 8 z (padded with NaN), compared 4 at a time, and a photon's other 32 bytes
-// are loaded only when it lies within r. Against leaves of <= 8 at varying depth scanned one position
-// at a time: -81 M instructions per pool iteration (-2.4 %, 3,385 -> 3,304 M), 55.3 -> 62.7 bytes per
-// photon (padding), same photons found (image relMSE 5e-18: summation order). On the pool a lookup that
-// passes the occupancy filter tests ~15 photons to find ~0.4 (bench/photon_map_bench.cpp models it). A hash
-// grid of cell edge 4 r (prototyped in that benchmark) was only ~20 % faster there and needs one radius
-// per pass.
+// photons. Lookups scan an array of positions and load a photon's other 32 bytes only when it lies
+// within r: on the pool a lookup that passes the occupancy filter tests ~15 photons to find ~0.4
+// (bench/photon_map_bench.cpp models it). A hash grid of cell edge 4 r (prototyped in that benchmark)
+// was only ~20 % faster there and needs one radius per pass. Also tried: every leaf at one depth, the
+// descent on node indices alone, positions in 8-wide blocks compared 4 at a time: 2.4 % fewer
+// instructions per pool iteration, but coherent (scanline) lookups in that benchmark ran 25-35 % slower
+// and the pool's render time rose (B/A 1.065 over 5 runs), so the layout stayed.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <functional>
-#include <limits>
 #include <vector>
 
 #include "core/math.hpp"
@@ -85,21 +82,19 @@ class PhotonKdTree {
  public:
   static constexpr size_t kLeafSize = 8;
 
-  // Copies `photons` into the map, in tree order: positions (in leaf blocks) and the rest apart.
+  // Copies `photons` into the map, in tree order: positions (12 bytes) and the rest (32 bytes) apart.
   // Queries with radii up to `reach` (if > 0) first ask an occupancy filter whether any photon is near.
   void build(const std::vector<Photon> &photons, const ParallelFor &parallel = serial_for, float reach = 0) {
     n_ = photons.size();
-    // Every leaf sits at depth_, the least depth at which ceil(n / 2^depth) <= 8; the halving splits then
-    // give each leaf floor or ceil of n / 2^depth_ photons: 4 to 8 when depth_ > 0.
-    depth_ = 0;
-    while (((n_ + (size_t(1) << depth_) - 1) >> depth_) > kLeafSize) ++depth_;
-    const size_t leaves = size_t(1) << depth_;
-    nodes_.assign(leaves - 1, Node{});
+    uint32_t depth = 0;
+    while (((n_ + (size_t(1) << depth) - 1) >> depth) > kLeafSize) ++depth;
+    nodes_.assign((size_t(1) << (depth + 1)), Node{});
     lo_ = Vec3f(kInfinity), hi_ = Vec3f(-kInfinity);
     // The tree is built over 16-byte keys (position, photon index), which nth_element moves faster than
     // 44-byte photons; the same comparisons on the same positions give the same permutation.
     std::vector<Key> keys(n_);
-    // Keys and bounds in chunks (serial work here is time the camera pass waits for).
+    // Keys and bounds in chunks, and below the copies in tree order: serial work in a photon pass is
+    // time the camera pass waits for (on 2 cores each serial step counts twice).
     constexpr size_t kChunk = 8192;
     const size_t chunks = (n_ + kChunk - 1) / kChunk;
     std::vector<Vec3f> chunk_lo(chunks, Vec3f(kInfinity)), chunk_hi(chunks, Vec3f(-kInfinity));
@@ -115,52 +110,37 @@ class PhotonKdTree {
     // subtrees to share out; then the subtrees. Each node's split depends only on its own range, so the
     // tree is the same whatever runs where.
     constexpr uint32_t kTopLevels = 6;
-    std::vector<Range> pending{Range{0, 0, n_, 0}};
-    for (uint32_t level = 0; level < std::min(kTopLevels, depth_); ++level) {
-      parallel(pending.size(), [&](size_t i) { split_node(keys.data(), pending[i]); });
+    std::vector<Range> pending{Range{0, 0, n_}};
+    for (uint32_t level = 0; level < kTopLevels; ++level) {
       std::vector<Range> next;
-      for (const Range &nd : pending) {
+      for (const Range &nd : pending)
+        if (nd.hi - nd.lo > kLeafSize) next.push_back(nd);
+      parallel(next.size(), [&](size_t i) { split_node(keys.data(), next[i]); });
+      pending.clear();
+      for (const Range &nd : next) {
         const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
-        next.push_back(Range{2 * nd.id + 1, nd.lo, mid, level + 1});
-        next.push_back(Range{2 * nd.id + 2, mid, nd.hi, level + 1});
+        pending.push_back(Range{2 * nd.id + 1, nd.lo, mid});
+        pending.push_back(Range{2 * nd.id + 2, mid, nd.hi});
       }
-      pending.swap(next);
     }
     parallel(pending.size(), [&](size_t i) { build_range(keys.data(), pending[i]); });
-    // Leaf blocks in leaf order (leaf l is node 2^depth_ - 1 + l), positions apart from the rest:
-    // lookups scan positions, and most photons they test are farther than r, so their other 32 bytes are
-    // never loaded.
-    blocks_.assign(leaves, LeafBlock{});
-    leaf_begin_.resize(leaves + 1);
+    // Positions and the rest in tree order, apart: lookups scan positions, and most photons they test
+    // are farther than r, so their other 32 bytes are never loaded.
+    positions_.resize(n_);
     data_.resize(n_);
-    constexpr size_t kLeavesPerTask = 1024;
-    parallel((leaves + kLeavesPerTask - 1) / kLeavesPerTask, [&](size_t t) {
-      for (size_t l = t * kLeavesPerTask; l < std::min(leaves, (t + 1) * kLeavesPerTask); ++l) {
-        // The leaf's range, as the builder's halving made it (bit b of l: the branch at depth_ - 1 - b).
-        size_t lo = 0, hi = n_;
-        for (uint32_t b = depth_; b-- > 0;) {
-          const size_t mid = lo + (hi - lo) / 2;
-          ((l >> b) & 1 ? lo : hi) = mid;
-        }
-        leaf_begin_[l] = uint32_t(lo);
-        LeafBlock &blk = blocks_[l];
-        for (size_t k = lo; k < hi; ++k) {
-          for (int a = 0; a < 3; ++a) blk.p[a][k - lo] = keys[k].p[a];
-          data_[k] = photons[keys[k].index];
-        }
-      }
+    parallel(chunks, [&](size_t c) {
+      for (size_t k = c * kChunk; k < std::min(n_, (c + 1) * kChunk); ++k)
+        positions_[k] = Vec3f::load(keys[k].p), data_[k] = photons[keys[k].index];
     });
-    leaf_begin_[leaves] = uint32_t(n_);
     filter_.build(
-        n_, reach, [&](size_t i) { return Vec3f::load(keys[i].p); }, parallel);
+        n_, reach, [&](size_t i) { return positions_[i]; }, parallel);
   }
 
   size_t size() const { return n_; }
   const PhotonData *data() const { return data_.data(); }  // in tree order
   // Bytes of the map: photons, kd-tree nodes, occupancy filter.
   size_t bytes() const {
-    return n_ * sizeof(PhotonData) + blocks_.size() * sizeof(LeafBlock) +
-           leaf_begin_.size() * sizeof(uint32_t) + nodes_.size() * sizeof(Node) + filter_.bytes();
+    return n_ * (sizeof(Vec3f) + sizeof(PhotonData)) + nodes_.size() * sizeof(Node) + filter_.bytes();
   }
   float filter_reach() const { return filter_.reach(); }
 
@@ -183,73 +163,47 @@ class PhotonKdTree {
     if (!may_hold(q, r)) return;
     const float r2 = r * r;
     const float qa[3] = {q.x, q.y, q.z};  // indexed by the split axis: a load, not Vec3f's branches
-    const uint32_t first_leaf = uint32_t(nodes_.size());  // every node below it is internal
-    uint32_t stack[64];                                   // far children; at most one per level
+    struct Item {
+      uint32_t id, lo, hi;
+    };
+    Item stack[64];
     int top = 0;
-    uint32_t id = 0;
+    uint32_t id = 0, lo = 0, hi = uint32_t(n_);
     for (;;) {
       // Descend to the leaf containing q, remembering far children the sphere reaches.
-      while (id < first_leaf) {
+      while (hi - lo > kLeafSize) {
         const Node nd = nodes_[id];
+        const uint32_t mid = lo + (hi - lo) / 2;
         const float d = qa[nd.axis] - nd.split;
         // Left holds p[a] <= split, right p[a] >= split. A point within r of q has |p[a] - q[a]| no
         // smaller than |split - q[a]| on the far side (float subtraction is monotonic), and its
         // computed d2 is no smaller than that square, so this never prunes a point the leaf accepts.
-        const uint32_t right = d > 0;
-        if (d * d <= r2) stack[top++] = 2 * id + 2 - right;
-        id = 2 * id + 1 + right;
+        const bool right = d > 0;
+        if (d * d <= r2) stack[top++] = right ? Item{2 * id + 1, lo, mid} : Item{2 * id + 2, mid, hi};
+        id = right ? 2 * id + 2 : 2 * id + 1;
+        (right ? lo : hi) = mid;
       }
-      scan_leaf(id - first_leaf, q, r2, f);
+      for (uint32_t i = lo; i < hi; ++i) {
+        const Vec3f &p = positions_[i];
+        const float dx = p.x - q.x, dy = p.y - q.y, dz = p.z - q.z;
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 <= r2) f(data_[i], d2);
+      }
       if (top == 0) return;
-      id = stack[--top];
+      const Item it = stack[--top];
+      id = it.id, lo = it.lo, hi = it.hi;
     }
   }
 
  private:
   struct Range {
     size_t id, lo, hi;
-    uint32_t level;
   };
 
   struct Key {
     float p[3];      // the photon's position
     uint32_t index;  // the photon's index in the caller's order
   };
-
-  // A leaf's positions by axis, unused slots NaN (no d2 <= r^2 holds for them, even for r = inf): one
-  // loop over 8 lanes that the compiler turns into vector compares.
-  struct alignas(32) LeafBlock {
-    LeafBlock() { std::fill(&p[0][0], &p[0][0] + 3 * kLeafSize, std::numeric_limits<float>::quiet_NaN()); }
-    float p[3][kLeafSize];
-  };
-
-  // Calls f for the leaf's photons within r, in order. Two 4-wide halves (GCC/Clang vector extensions:
-  // SSE here, scalar code where a target has none); most scanned leaves hold none.
-  template <class F>
-  void scan_leaf(uint32_t leaf, const Vec3f &q, float r2, F &f) const {
-    using V4 = float __attribute__((vector_size(16)));
-    using M4 = int32_t __attribute__((vector_size(16)));
-    static_assert(kLeafSize == 8, "two halves of four");
-    const LeafBlock &b = blocks_[leaf];
-    V4 d2[2];
-    M4 within[2];
-    for (int h = 0; h < 2; ++h) {
-      V4 x, y, z;
-      std::memcpy(&x, &b.p[0][4 * h], sizeof(V4));
-      std::memcpy(&y, &b.p[1][4 * h], sizeof(V4));
-      std::memcpy(&z, &b.p[2][4 * h], sizeof(V4));
-      const V4 dx = x - q.x, dy = y - q.y, dz = z - q.z;
-      d2[h] = dx * dx + dy * dy + dz * dz;
-      within[h] = d2[h] <= r2;
-    }
-    uint64_t any[2];
-    const M4 either = within[0] | within[1];
-    std::memcpy(any, &either, sizeof(any));
-    if ((any[0] | any[1]) == 0) return;
-    const PhotonData *data = data_.data() + leaf_begin_[leaf];
-    for (uint32_t k = 0; k < kLeafSize; ++k)
-      if (within[k >> 2][k & 3]) f(data[k], d2[k >> 2][k & 3]);
-  }
 
   // Partitions one node of `keys`: median on the widest axis of the range's bounds.
   void split_node(Key *keys, const Range &nd) {
@@ -272,25 +226,23 @@ class PhotonKdTree {
     while (!stack.empty()) {
       const Range nd = stack.back();
       stack.pop_back();
-      if (nd.level >= depth_) continue;
+      if (nd.hi - nd.lo <= kLeafSize) continue;
       split_node(keys, nd);
       const size_t mid = nd.lo + (nd.hi - nd.lo) / 2;
-      stack.push_back(Range{2 * nd.id + 1, nd.lo, mid, nd.level + 1});
-      stack.push_back(Range{2 * nd.id + 2, mid, nd.hi, nd.level + 1});
+      stack.push_back(Range{2 * nd.id + 1, nd.lo, mid});
+      stack.push_back(Range{2 * nd.id + 2, mid, nd.hi});
     }
   }
 
   size_t n_ = 0;
-  uint32_t depth_ = 0;  // of every leaf
   struct Node {
     float split = 0;
     uint32_t axis = 0;
   };
-  std::vector<Node> nodes_;           // internal nodes in heap order: 2^depth_ - 1
-  std::vector<LeafBlock> blocks_;     // positions, one block per leaf, in leaf order
-  std::vector<uint32_t> leaf_begin_;  // leaf l's first photon in tree order; leaf_begin_[2^depth_] = n
-  std::vector<PhotonData> data_;      // in tree order
-  Vec3f lo_, hi_;                     // bounds of all photons
+  std::vector<Node> nodes_;       // internal nodes in heap order
+  std::vector<Vec3f> positions_;  // in tree order
+  std::vector<PhotonData> data_;  // in tree order
+  Vec3f lo_, hi_;                 // bounds of all photons
   OccupancyFilter filter_;
 };
 
