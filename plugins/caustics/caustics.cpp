@@ -14,6 +14,7 @@
 #include "core/bounding_sphere.hpp"
 #include "core/math.hpp"
 #include "core/sampling.hpp"
+#include "emission_strata.hpp"
 #include "emitters.hpp"
 #include "mis.hpp"
 #include "photon_map.hpp"
@@ -289,14 +290,15 @@ class CausticsSolver final : public sdk::Integrator {
       CausticsSolver *self;
       std::vector<PhotonChunk> *chunks;
       uint32_t pass;
-    } job{this, &chunks, pass};
+      uint64_t paths;
+    } job{this, &chunks, pass, paths};
     const auto fn = [](const nimbus_thread_ctx_t *ctx, uint64_t b, uint64_t e, void *user) {
       const Job &j = *static_cast<Job *>(user);
       PhotonChunk &c = (*j.chunks)[b / kPhotonPathsPerTask];
       c.photons.reserve(256);
       const size_t cap = size_t(e - b) * kPhotonsPerPathCap;
       for (uint64_t p = b; p < e && c.photons.size() < cap; ++p) {
-        j.self->trace_photon(*ctx, p, j.pass, c);
+        j.self->trace_photon(*ctx, p, j.paths, j.pass, c);
         ++c.paths;
       }
     };
@@ -369,7 +371,8 @@ class CausticsSolver final : public sdk::Integrator {
 
   // One photon path: emission by power-proportional light selection, storage at rough vertices after a
   // sharp one, termination after two consecutive rough vertices (spec 4), MIS state per photon.
-  void trace_photon(const nimbus_thread_ctx_t &ctx, uint64_t path, uint32_t pass, PhotonChunk &out) const {
+  void trace_photon(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t paths, uint32_t pass,
+                    PhotonChunk &out) const {
     const nimbus_host_t *h = host().get();
     nimbus_rng_t rng;
     rng_->derive(h, path, pass, kStreamPhoton, &rng);
@@ -378,7 +381,15 @@ class CausticsSolver final : public sdk::Integrator {
     if (li < 0 || !(sel > 0)) return;
     const uint32_t light = uint32_t(li);
     const Emitter &em = emitters_[light];
-    const float ue[4] = {next(rng), next(rng), next(rng), next(rng)};
+    float ue[4] = {next(rng), next(rng), next(rng), next(rng)};
+    // The light's main pair of numbers (position for the sun, environment and area lights; direction
+    // for point and spot lights) comes stratified along the pass (emission_strata.hpp).
+    {
+      const float xi = next(rng), j0 = next(rng), j1 = next(rng);
+      const Vec2f s = emission_sample(path, paths, xi, j0, j1);
+      const int first = em.infinite() || em.kind == EmitterKind::Area ? 0 : 2;
+      ue[first] = s.x, ue[first + 1] = s.y;
+    }
     nimbus_light_emission_t es;
     lights_->sample_emission(h, light, ue, &es);
     if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0)) return;

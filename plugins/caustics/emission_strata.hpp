@@ -1,0 +1,52 @@
+// Stratified, spatially ordered emission samples for one photon pass.
+//
+// Path p of a pass of N paths takes its two emission numbers (the sun's point on its emission rectangle
+// or disk, a point or spot light's direction in its cone, an area light's point) from the square's
+// Hilbert curve at u = (p + xi) / N, xi uniform: the N paths split [0, 1) into N equal strata, and the
+// curve maps each stratum onto a region of the square of area 1 / N. For a path whose index is uniform
+// the sample is uniform over the square (the curve's cell is uniform, the point uniform in it), so the
+// emission densities the MIS weights use do not change; together the pass's samples are stratified.
+// Consecutive paths (one task runs 1,024 of them) start next to each other and travel nearly parallel
+// up to their first diffuse bounce, so the ray casts of a task share the acceleration structure's
+// cache lines, where independent random samples scattered every ray over the whole target.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "core/math.hpp"
+
+namespace nimbus::caustics {
+
+inline constexpr uint32_t kHilbertOrder = 16;  // 2^16 x 2^16 cells: finer than any pass's strata
+
+// Cell (x, y) of the 2^order x 2^order grid at distance d along the Hilbert curve (the classic
+// iterative inverse, one quadrant rotation per level). Adjacent d give edge-adjacent cells.
+inline void hilbert_cell(uint64_t d, uint32_t order, uint32_t &x, uint32_t &y) {
+  x = y = 0;
+  for (uint32_t s = 1; s < (uint32_t(1) << order); s <<= 1) {
+    const uint32_t rx = 1 & uint32_t(d >> 1), ry = 1 & uint32_t(d ^ rx);
+    if (ry == 0) {
+      if (rx == 1) x = s - 1 - x, y = s - 1 - y;
+      const uint32_t t = x;
+      x = y, y = t;
+    }
+    x += s * rx, y += s * ry;
+    d >>= 2;
+  }
+}
+
+// The two emission numbers of path p of n (p < n), from xi (the stratum's jitter) and j0, j1 (the
+// point's jitter in its cell), all uniform in [0, 1).
+inline Vec2f emission_sample(uint64_t p, uint64_t n, float xi, float j0, float j1) {
+  constexpr uint64_t kCells = uint64_t(1) << (2 * kHilbertOrder);
+  const double u = (double(p) + double(xi)) / double(n > 0 ? n : 1);
+  const uint64_t d = std::min(kCells - 1, uint64_t(u * double(kCells)));
+  uint32_t x = 0, y = 0;
+  hilbert_cell(d, kHilbertOrder, x, y);
+  constexpr float kCell = 1.0f / float(uint32_t(1) << kHilbertOrder), kBelowOne = 0x1.fffffep-1f;
+  // float(x) + j < 2^16 keeps the sum exact to 8 bits of j; min keeps a rounded-up 1 out.
+  return Vec2f(std::min((float(x) + j0) * kCell, kBelowOne), std::min((float(y) + j1) * kCell, kBelowOne));
+}
+
+}  // namespace nimbus::caustics
