@@ -6,9 +6,11 @@
 // curve maps each stratum onto a region of the square of area 1 / N. For a path whose index is uniform
 // the sample is uniform over the square (the curve's cell is uniform, the point uniform in it), so the
 // emission densities the MIS weights use do not change; together the pass's samples are stratified.
-// Consecutive paths (one task runs 1,024 of them) start next to each other and travel nearly parallel
-// up to their first diffuse bounce, so the ray casts of a task share the acceleration structure's
-// cache lines, where independent random samples scattered every ray over the whole target.
+// Consecutive paths (one task runs 1,024 of them) start next to each other.
+// Measured on the pool (16 iterations, seeds 11/12 and 13/14, bench/variance_split.py): variance of
+// one render -11 % (beauty) and -13 % (caustics element) against independent samples; sphere-point,
+// sphere-area, ring and glasses within 1 %. The photon passes took as long as before (2.5-2.7 s in 32
+// iterations either way): the spatial order did not make the ray casts measurably cheaper here.
 #pragma once
 
 #include <algorithm>
