@@ -30,7 +30,9 @@ TEST(CausticsEmissionStrata, HilbertCurveIsABijectionOfTouchingCells) {
       ASSERT_LT(x, 1u << order);
       ASSERT_LT(y, 1u << order);
       ASSERT_TRUE(seen.insert({x, y}).second) << "order " << order << " d " << d;
-      if (d > 0) ASSERT_EQ(std::abs(int(x) - int(px)) + std::abs(int(y) - int(py)), 1) << "order " << order;
+      if (d > 0) {
+        ASSERT_EQ(std::abs(int(x) - int(px)) + std::abs(int(y) - int(py)), 1) << "order " << order;
+      }
       px = x, py = y;
     }
     EXPECT_EQ(seen.size(), cells);
