@@ -51,12 +51,11 @@ class OccupancyFilter {
     inv_cell_ = 1 / (2 * grown);
     lines_ = (n + 7) / 8;  // 64 bits per photon
     bits_.assign(lines_, Line{});
-    const size_t halves = n >= kParallelPhotons ? 2 : 1, half = (n + 1) / 2;
-    std::vector<Line> second(halves == 2 ? lines_ : 0);
-    parallel(halves, [&](size_t part) {
-      Line *bits = part == 0 ? bits_.data() : second.data();
-      const size_t end = halves == 1 ? n : std::min(n, (part + 1) * half);
-      for (size_t i = part * half; i < end; ++i) {
+    const bool halves = n >= kParallelPhotons;
+    std::vector<Line> second(halves ? lines_ : 0);
+    parallel_ranges(parallel, n, halves ? (n + 1) / 2 : n, [&](size_t begin, size_t end) {
+      Line *bits = begin == 0 ? bits_.data() : second.data();
+      for (size_t i = begin; i < end; ++i) {
         const Vec3f p = position(i);
         uint64_t c0[3], c1[3];
         for (int a = 0; a < 3; ++a)
@@ -66,10 +65,9 @@ class OccupancyFilter {
             for (uint64_t z = c0[2]; z <= c1[2]; ++z) set(bits, x, y, z);
       }
     });
-    if (halves == 2) {
-      constexpr size_t kLinesPerTask = 4096;
-      parallel((lines_ + kLinesPerTask - 1) / kLinesPerTask, [&](size_t t) {
-        for (size_t l = t * kLinesPerTask; l < std::min<size_t>(lines_, (t + 1) * kLinesPerTask); ++l)
+    if (halves) {
+      parallel_ranges(parallel, lines_, 4096, [&](size_t b, size_t e) {
+        for (size_t l = b; l < e; ++l)
           for (int w = 0; w < 8; ++w) bits_[l].w[w] |= second[l].w[w];
       });
     }

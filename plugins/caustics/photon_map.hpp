@@ -98,8 +98,9 @@ class PhotonKdTree {
     constexpr size_t kChunk = 8192;
     const size_t chunks = (n_ + kChunk - 1) / kChunk;
     std::vector<Vec3f> chunk_lo(chunks, Vec3f(kInfinity)), chunk_hi(chunks, Vec3f(-kInfinity));
-    parallel(chunks, [&](size_t c) {
-      for (size_t i = c * kChunk; i < std::min(n_, (c + 1) * kChunk); ++i) {
+    parallel_ranges(parallel, n_, kChunk, [&](size_t b, size_t e) {
+      const size_t c = b / kChunk;
+      for (size_t i = b; i < e; ++i) {
         const Vec3f p = photons[i].position();
         keys[i] = Key{{p.x, p.y, p.z}, uint32_t(i)};
         chunk_lo[c] = min(chunk_lo[c], p), chunk_hi[c] = max(chunk_hi[c], p);
@@ -128,8 +129,8 @@ class PhotonKdTree {
     // are farther than r, so their other 32 bytes are never loaded.
     positions_.resize(n_);
     data_.resize(n_);
-    parallel(chunks, [&](size_t c) {
-      for (size_t k = c * kChunk; k < std::min(n_, (c + 1) * kChunk); ++k)
+    parallel_ranges(parallel, n_, kChunk, [&](size_t b, size_t e) {
+      for (size_t k = b; k < e; ++k)
         positions_[k] = Vec3f::load(keys[k].p), data_[k] = photons[keys[k].index];
     });
     filter_.build(
