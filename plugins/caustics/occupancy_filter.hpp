@@ -52,7 +52,8 @@ class OccupancyFilter {
     lines_ = (n + 7) / 8;  // 64 bits per photon
     bits_.assign(lines_, Line{});
     const bool halves = n >= kParallelPhotons;
-    std::vector<Line> second(halves ? lines_ : 0);
+    std::vector<Line> &second = second_;
+    second.assign(halves ? lines_ : 0, Line{});
     parallel_ranges(parallel, n, halves ? (n + 1) / 2 : n, [&](size_t begin, size_t end) {
       Line *bits = begin == 0 ? bits_.data() : second.data();
       for (size_t i = begin; i < end; ++i) {
@@ -115,6 +116,7 @@ class OccupancyFilter {
   }
 
   std::vector<Line> bits_;
+  std::vector<Line> second_;  // build()'s scratch: the second half's bits, kept from build to build
   uint64_t lines_ = 0;
   double origin_[3] = {0, 0, 0}, inv_cell_ = 0;
   float reach_ = -1;  // < 0: no filter

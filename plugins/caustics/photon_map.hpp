@@ -92,7 +92,8 @@ class PhotonKdTree {
     lo_ = Vec3f(kInfinity), hi_ = Vec3f(-kInfinity);
     // The tree is built over 16-byte keys (position, photon index), which nth_element moves faster than
     // 44-byte photons; the same comparisons on the same positions give the same permutation.
-    std::vector<Key> keys(n_);
+    std::vector<Key> &keys = keys_;  // kept from build to build, as the arrays below (no page faults)
+    keys.resize(n_);
     // Keys and bounds in chunks, and below the copies in tree order: serial work in a photon pass is
     // time the camera pass waits for (on 2 cores each serial step counts twice).
     constexpr size_t kChunk = 8192;
@@ -243,6 +244,7 @@ class PhotonKdTree {
   std::vector<Node> nodes_;       // internal nodes in heap order
   std::vector<Vec3f> positions_;  // in tree order
   std::vector<PhotonData> data_;  // in tree order
+  std::vector<Key> keys_;         // build()'s scratch
   Vec3f lo_, hi_;                 // bounds of all photons
   OccupancyFilter filter_;
 };
