@@ -7,10 +7,15 @@
 // photons. Lookups scan an array of positions and load a photon's other 32 bytes only when it lies
 // within r: on the pool a lookup that passes the occupancy filter tests ~15 photons to find ~0.4
 // (bench/photon_map_bench.cpp models it). A hash grid of cell edge 4 r (prototyped in that benchmark)
-// was only ~20 % faster there and needs one radius per pass. Also tried: every leaf at one depth, the
-// descent on node indices alone, positions in 8-wide blocks compared 4 at a time: 2.4 % fewer
-// instructions per pool iteration, but coherent (scanline) lookups in that benchmark ran 25-35 % slower
-// and the pool's render time rose (B/A 1.065 over 5 runs), so the layout stayed.
+// was only ~20 % faster there and needs one radius per pass. In the renderer, for passes whose radii
+// stay within a factor ~3 (the pool, sphere-point), grids of cell edge 2 reach were no faster either:
+// one hashed bucket per cell (pool time B/A 1.001, 60 B per photon), 4x4x4-cell blocks in a hash table
+// with photons in block order (1.009, 75 B), the same with 16-bit cell offsets and no occupancy filter
+// (pool 0.971 through its faster build, sphere-point 1.075): lookups there are bound by one cache miss
+// per structure they touch (table, cell ranges, positions), as the tree's are. Also tried: every leaf
+// at one depth, the descent on node indices alone, positions in 8-wide blocks compared 4 at a time:
+// 2.4 % fewer instructions per pool iteration, but coherent (scanline) lookups in that benchmark ran
+// 25-35 % slower and the pool's render time rose (B/A 1.065 over 5 runs), so the layout stayed.
 #pragma once
 
 #include <algorithm>
