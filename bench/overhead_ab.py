@@ -8,8 +8,8 @@ the build's plugin directory before each render, and restored at the end), same 
 Per run and build the overhead is caustics seconds / pt seconds - 1 against that run's pt render; the
 script prints per scene the median over runs for both builds and the median of the per-run ratio
 B / A of caustics seconds, and of the photon passes' seconds (stat `caustics_photon_seconds`, which
-moves less with the machine than the whole render). The machine's speed drifts by ±10 % within minutes, so only ratios taken
-within one run are compared. Not part of CI.
+moves less with the machine than the whole render). The machine's speed drifts by ±10 % within
+minutes, so only ratios taken within one run are compared. Not part of CI.
 """
 import argparse
 import os
@@ -54,7 +54,8 @@ def main():
                     t, photons = {}, {}
                     for build in ("A", "B") if i % 2 == 0 else ("B", "A"):
                         shutil.copy2(libs[build], plugin)
-                        t[build], photons[build] = seconds(args.nimbus, scene, "caustics", args.iterations, i + 1, out)
+                        t[build], photons[build] = seconds(args.nimbus, scene, "caustics", args.iterations,
+                                                           i + 1, out)
                         over[build].append(100 * (t[build] / pt - 1))
                     ratio.append(t["B"] / t["A"])
                     if photons["A"] > 0:
