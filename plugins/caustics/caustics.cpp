@@ -255,7 +255,8 @@ class CausticsSolver final : public sdk::Integrator {
   }
 
   // ---- photon pass ----------------------------------------------------------------------------------
-  struct PhotonChunk {
+  // A cache line of its own: tasks on different workers update their chunks on every path.
+  struct alignas(64) PhotonChunk {
     std::vector<Photon> photons;
     uint64_t paths = 0;  // completed paths
     bool saw_sharp = false;

@@ -44,19 +44,40 @@ class Host {
   const nimbus_host_t *h_;
 };
 
-// Per-worker state, sized in begin_render (never thread_local).
+// Per-worker state, sized in begin_render (never thread_local). Each worker's item starts a cache line of
+// its own: items written on every sample by different workers must not share a line (false sharing cost
+// the caustics solver ~8 % of a camera pass on a 2-core machine).
 template <class T>
 class PerWorker {
+  struct alignas(64) Slot {
+    T item{};
+  };
+
  public:
-  void resize(uint32_t workers) { items_.assign(workers, T{}); }
-  T &operator[](const nimbus_thread_ctx_t &ctx) { return items_[ctx.worker_index]; }
-  T &operator[](uint32_t i) { return items_[i]; }
+  class iterator {
+   public:
+    explicit iterator(typename std::vector<Slot>::iterator it) : it_(it) {}
+    T &operator*() const { return it_->item; }
+    iterator &operator++() {
+      ++it_;
+      return *this;
+    }
+    bool operator==(const iterator &o) const { return it_ == o.it_; }
+    bool operator!=(const iterator &o) const { return it_ != o.it_; }
+
+   private:
+    typename std::vector<Slot>::iterator it_;
+  };
+
+  void resize(uint32_t workers) { items_.assign(workers, Slot{}); }
+  T &operator[](const nimbus_thread_ctx_t &ctx) { return items_[ctx.worker_index].item; }
+  T &operator[](uint32_t i) { return items_[i].item; }
   size_t size() const { return items_.size(); }
-  typename std::vector<T>::iterator begin() { return items_.begin(); }
-  typename std::vector<T>::iterator end() { return items_.end(); }
+  iterator begin() { return iterator(items_.begin()); }
+  iterator end() { return iterator(items_.end()); }
 
  private:
-  std::vector<T> items_;
+  std::vector<Slot> items_;
 };
 
 // Common base of plugin instances: owns the C nimbus_plugin_t that the host sees.
