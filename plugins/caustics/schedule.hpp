@@ -56,6 +56,13 @@ struct ScheduleConfig {
   // sphere-area / ring / glasses; relMSE at equal time the same on sphere-point and glasses, ~15 % lower
   // on sphere-area (more iterations), 1.5x higher on the ring (still ~1000x below nimbus.pt's).
   uint64_t min_floor = 16384;
+  // Cap on the photons a pass stores, relative to the camera paths of one iteration (0: none), applied
+  // through the photons stored per path in the previous pass. Lookups and the map build scale with the
+  // stored photons, not with the paths: the pool stores ~1.06 photons per path, the other scenes
+  // 0.3-0.85, and its lookups alone cost ~28 % of nimbus.pt's time at 0.5 paths per camera path
+  // (docs/performance.md §4). 1/6 binds on the pool only (~38,000 stored photons per pass at 640x360
+  // instead of ~78,000), which brings it under the 40 % overhead goal at ~1.3x its variance at equal time.
+  double stored_photons_per_camera_path = 1.0 / 6;
   uint64_t camera_paths = 1;  // camera paths per iteration (the render region's pixels)
 
   uint64_t effective_max() const {
@@ -79,13 +86,16 @@ class PhotonSchedule {
     if (passes_ == 0) return cfg_.probe;
     const uint64_t lo = cfg_.effective_min(), hi = cfg_.effective_max();
     if (idle_ > 0) return lo;
-    const double n = std::round(u_ * double(hi));
-    return uint64_t(std::clamp(n, double(lo), double(hi)));
+    const double n = std::clamp(std::round(u_ * double(hi)), double(lo), double(hi));
+    if (!(cfg_.stored_photons_per_camera_path > 0) || !(yield_ > 0)) return uint64_t(n);
+    const double stored_cap = cfg_.stored_photons_per_camera_path * double(cfg_.camera_paths) / yield_;
+    return uint64_t(std::min(n, std::max(double(lo), std::round(stored_cap))));
   }
 
   // A photon pass of `paths` paths stored `stored` photons before the camera pass of `iteration`.
   void pass_done(uint64_t iteration, uint64_t paths, uint64_t stored) {
     ++passes_;
+    if (paths > 0 && stored > 0) yield_ = double(stored) / double(paths);
     if (stored == 0) {
       active_ = false;
       back_off(iteration);
@@ -139,6 +149,7 @@ class PhotonSchedule {
   uint64_t next_pass_ = 1;
   uint32_t passes_ = 0, idle_ = 0;
   double u_ = 0;
+  double yield_ = 0;  // photons stored per photon path in the last pass that stored any
   bool active_ = false, dormant_ = false;
 };
 

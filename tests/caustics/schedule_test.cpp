@@ -30,8 +30,9 @@ TEST(CausticsSchedule, RadiusStartsAtOneAndAHalfPixelsAndShrinks) {
 ScheduleConfig config(uint64_t camera_paths) {
   ScheduleConfig c;
   c.n_max = 1 << 20;
-  c.photon_paths_per_camera_path = 0;  // no cap: N_min = N_max / 64
-  c.min_floor = 1;                     // the schedule's logic, not the floor (tested above)
+  c.photon_paths_per_camera_path = 0;    // no cap: N_min = N_max / 64
+  c.min_floor = 1;                       // the schedule's logic, not the floor (tested above)
+  c.stored_photons_per_camera_path = 0;  // nor the cap on stored photons (tested below)
   c.probe = 1 << 16;
   c.camera_paths = camera_paths;
   return c;
@@ -85,6 +86,30 @@ TEST(CausticsSchedule, ProbeThenBudgetFromUsefulPixels) {
   s.iteration_done(3, 1.0);
   EXPECT_EQ(s.plan(4), 1u << 20);  // N_max
   EXPECT_EQ(s.passes(), 3u);
+}
+
+// The cap on stored photons (default 1/6 per camera path) binds through the previous pass's photons per
+// path: a scene storing ~1 photon per path (the pool) gets fewer paths, one storing 0.3 (the ring) none.
+TEST(CausticsSchedule, StoredPhotonsCappedByCameraPasses) {
+  ScheduleConfig c;
+  c.camera_paths = 640 * 360;
+  PhotonSchedule s(c);
+  EXPECT_EQ(s.plan(1), 1u << 16);
+  s.pass_done(1, 1 << 16, 1 << 16);  // 1 photon per path
+  s.iteration_done(1, 1.0);
+  EXPECT_EQ(s.plan(2), 38400u);      // 230400 / 6 stored photons: 38400 paths, not N_max = 115200
+  s.pass_done(2, 38400, 38400 * 2);  // 2 per path: half the paths
+  s.iteration_done(2, 1.0);
+  EXPECT_EQ(s.plan(3), 19200u);
+  s.pass_done(3, 19200, 19200 * 3 / 10);  // 0.3 per path: the cap is above N_max
+  s.iteration_done(3, 1.0);
+  EXPECT_EQ(s.plan(4), 115200u);
+  s.iteration_done(3, 0.25);
+  EXPECT_EQ(s.plan(4), 28800u);      // u N_max, under the cap
+  s.pass_done(4, 28800, 0);          // a pass storing nothing keeps the last yield
+  s.pass_done(5, 1 << 14, 1 << 17);  // 8 per path: the cap, but never below N_min
+  s.iteration_done(5, 1.0);
+  EXPECT_EQ(s.plan(s.next_pass()), c.effective_min());
 }
 
 TEST(CausticsSchedule, LargePassesServeSeveralIterations) {
