@@ -45,8 +45,8 @@ class Host {
 };
 
 // Per-worker state, sized in begin_render (never thread_local). Each worker's item starts a cache line of
-// its own: items written on every sample by different workers must not share a line (false sharing cost
-// the caustics solver ~8 % of a camera pass on a 2-core machine).
+// its own: items written on every sample by different workers must not share a line (in one profile of
+// the caustics solver on sphere-point, false sharing took 26 % of the samples).
 template <class T>
 class PerWorker {
   struct alignas(64) Slot {
