@@ -617,8 +617,9 @@ class CausticsSolver final : public sdk::Integrator {
     if (has_sample_film() ? cam_weight == 0 : cam_weight <= 0) return;
 
     Rgb beta(cam_weight);
-    bool specular = true;         // the previous bounce was delta (or there was none): no MIS on hits
-    bool albedo_done = false;     // the albedo element takes the first non-specular surface
+    bool specular = true;  // the previous bounce was delta (or there was none): no MIS on hits
+    // The albedo element takes the first non-specular surface; no host call when nobody asked for it.
+    bool albedo_done = ids_.albedo < 0;
     float prev_pdf = 0;           // solid-angle pdf of the BSDF sample that produced `ray`
     nimbus_interaction_t prev{};  // the vertex `ray` left
     CameraState cam;
