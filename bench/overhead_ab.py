@@ -13,10 +13,10 @@ minutes, so only ratios taken within one run are compared. Not part of CI.
 """
 import argparse
 import os
-import shutil
 import statistics
 import tempfile
 
+from nimbus_tools import PluginSwap
 from overhead import render
 
 
@@ -36,37 +36,28 @@ def main():
     ap.add_argument("--nimbus", default="build/bin/nimbus")
     args = ap.parse_args()
 
-    plugin = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(args.nimbus))), "lib", "nimbus",
-                          "plugins", "libnimbus_caustics.so")
-    with tempfile.TemporaryDirectory() as tmp:
-        saved = os.path.join(tmp, "saved.so")
-        shutil.copy2(plugin, saved)
-        libs = {"A": os.path.join(tmp, "a.so"), "B": os.path.join(tmp, "b.so")}
-        shutil.copy2(args.a, libs["A"])
-        shutil.copy2(args.b, libs["B"])
+    with tempfile.TemporaryDirectory() as tmp, \
+            PluginSwap(args.nimbus, "libnimbus_caustics.so", {"A": args.a, "B": args.b}) as swap:
         out = os.path.join(tmp, "img.exr")
-        try:
-            for scene in args.scenes:
-                over = {"A": [], "B": []}
-                ratio, photon_ratio = [], []
-                for i in range(args.runs):
-                    pt = seconds(args.nimbus, scene, "pt", args.iterations, i + 1, out)[0]
-                    t, photons = {}, {}
-                    for build in ("A", "B") if i % 2 == 0 else ("B", "A"):
-                        shutil.copy2(libs[build], plugin)
-                        t[build], photons[build] = seconds(args.nimbus, scene, "caustics", args.iterations,
-                                                           i + 1, out)
-                        over[build].append(100 * (t[build] / pt - 1))
-                    ratio.append(t["B"] / t["A"])
-                    if photons["A"] > 0:
-                        photon_ratio.append(photons["B"] / photons["A"])
-                print(f"{os.path.basename(scene):20s} overhead A {statistics.median(over['A']):6.1f} %  "
-                      f"B {statistics.median(over['B']):6.1f} %  time B/A {statistics.median(ratio):.3f}  "
-                      f"photon passes B/A {statistics.median(photon_ratio) if photon_ratio else float('nan'):.3f}  "
-                      f"(runs A: {' '.join(f'{o:.0f}' for o in over['A'])}; B: {' '.join(f'{o:.0f}' for o in over['B'])})",
-                      flush=True)
-        finally:
-            shutil.copy2(saved, plugin)
+        for scene in args.scenes:
+            over = {"A": [], "B": []}
+            ratio, photon_ratio = [], []
+            for i in range(args.runs):
+                pt = seconds(args.nimbus, scene, "pt", args.iterations, i + 1, out)[0]
+                t, photons = {}, {}
+                for build in ("A", "B") if i % 2 == 0 else ("B", "A"):
+                    swap.use(build)
+                    t[build], photons[build] = seconds(args.nimbus, scene, "caustics", args.iterations, i + 1,
+                                                       out)
+                    over[build].append(100 * (t[build] / pt - 1))
+                ratio.append(t["B"] / t["A"])
+                if photons["A"] > 0:
+                    photon_ratio.append(photons["B"] / photons["A"])
+            print(f"{os.path.basename(scene):20s} overhead A {statistics.median(over['A']):6.1f} %  "
+                  f"B {statistics.median(over['B']):6.1f} %  time B/A {statistics.median(ratio):.3f}  "
+                  f"photon passes B/A {statistics.median(photon_ratio) if photon_ratio else float('nan'):.3f}  "
+                  f"(runs A: {' '.join(f'{o:.0f}' for o in over['A'])}; B: {' '.join(f'{o:.0f}' for o in over['B'])})",
+                  flush=True)
 
 
 if __name__ == "__main__":
