@@ -29,6 +29,16 @@ def exr_metadata(path):
     return meta
 
 
+def add_ab_arguments(ap, what):
+    """The arguments of the side-by-side scripts: scenes, the two builds of `what`, iterations, runs."""
+    ap.add_argument("scenes", nargs="+")
+    ap.add_argument("--a", required=True, help=f"{what}, build A")
+    ap.add_argument("--b", required=True, help=f"{what}, build B")
+    ap.add_argument("--iterations", type=int, default=16)
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--nimbus", default="build/bin/nimbus")
+
+
 class PluginSwap:
     """Builds of one plugin library, swapped into a nimbus build's plugin directory one at a time, for
     side-by-side timings in one run. The library that was there is put back at exit.

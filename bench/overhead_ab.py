@@ -16,7 +16,7 @@ import os
 import statistics
 import tempfile
 
-from nimbus_tools import PluginSwap
+from nimbus_tools import PluginSwap, add_ab_arguments
 from overhead import render
 
 
@@ -28,12 +28,7 @@ def seconds(nimbus, scene, integrator, iterations, seed, out):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("scenes", nargs="+")
-    ap.add_argument("--a", required=True, help="caustics plugin library, build A")
-    ap.add_argument("--b", required=True, help="caustics plugin library, build B")
-    ap.add_argument("--iterations", type=int, default=16)
-    ap.add_argument("--runs", type=int, default=5)
-    ap.add_argument("--nimbus", default="build/bin/nimbus")
+    add_ab_arguments(ap, "caustics plugin library")
     args = ap.parse_args()
 
     with tempfile.TemporaryDirectory() as tmp, \

@@ -14,20 +14,15 @@ import os
 import statistics
 import tempfile
 
-from nimbus_tools import PluginSwap
+from nimbus_tools import PluginSwap, add_ab_arguments
 from overhead import render
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("scenes", nargs="+")
+    add_ab_arguments(ap, "plugin library")
     ap.add_argument("--plugin", required=True, help="library file name in the plugin directory")
     ap.add_argument("--integrator", required=True, help="integrator to render with, e.g. pt")
-    ap.add_argument("--a", required=True, help="plugin library, build A")
-    ap.add_argument("--b", required=True, help="plugin library, build B")
-    ap.add_argument("--iterations", type=int, default=16)
-    ap.add_argument("--runs", type=int, default=5)
-    ap.add_argument("--nimbus", default="build/bin/nimbus")
     args = ap.parse_args()
 
     with tempfile.TemporaryDirectory() as tmp, \
