@@ -256,7 +256,7 @@ class CausticsSolver final : public sdk::Integrator {
 
   // ---- photon pass ----------------------------------------------------------------------------------
   // A cache line of its own: tasks on different workers update their chunks on every path.
-  struct alignas(64) PhotonChunk {
+  struct alignas(sdk::kCacheLineBytes) PhotonChunk {
     std::vector<Photon> photons;
     uint64_t paths = 0;  // completed paths
     bool saw_sharp = false;
