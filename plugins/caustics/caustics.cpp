@@ -209,12 +209,15 @@ class CausticsSolver final : public sdk::Integrator {
     schedule_.set_camera_paths(pixels);
     if (schedule_.dormant() && camera_saw_sharp()) schedule_.set_dormant(false);
     if (map_active_) {
-      // Useful pixels (spec 5): merges bring more than 1 % of the pixel's light. Pixels outside the
-      // region have Mp = Tp = 0 and never count.
-      uint64_t useful = 0;
-      for (size_t i = 0; i < useful_merge_.size(); ++i)
-        useful += useful_merge_[i] > float(kUsefulThreshold) * useful_total_[i] ? 1 : 0;
-      schedule_.iteration_done(iteration, pixels ? std::min(1.0, double(useful) / double(pixels)) : 0.0);
+      // Useful pixels (spec 5, schedule.hpp): merges bring more than a fraction tau of the pixel's
+      // light. Pixels outside the region have Mp = Tp = 0 and never count.
+      uint64_t budget = 0, idle = 0;
+      for (size_t i = 0; i < useful_merge_.size(); ++i) {
+        budget += useful_merge_[i] > float(kBudgetThreshold) * useful_total_[i] ? 1 : 0;
+        idle += useful_merge_[i] > float(kIdleThreshold) * useful_total_[i] ? 1 : 0;
+      }
+      const auto ratio = [&](uint64_t n) { return pixels ? std::min(1.0, double(n) / double(pixels)) : 0.0; };
+      schedule_.iteration_done(iteration, {ratio(budget), ratio(idle)});
       ++stats_.map_iterations;
     }
     return NIMBUS_OK;

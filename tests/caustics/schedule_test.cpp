@@ -65,7 +65,7 @@ TEST(CausticsSchedule, MapSizeCappedByCameraPasses) {
   EXPECT_EQ(s.plan(1), 1u << 16);  // the probe is not capped
   s.pass_done(1, 1 << 16, 10);
   EXPECT_EQ(s.next_pass(), 1u + 18);  // 65536 / 3600 = 18 camera passes
-  s.iteration_done(18, 1.0);
+  s.iteration_done(18, {1.0, 1.0});
   EXPECT_EQ(s.plan(19), 80u * 45);
   s.pass_done(19, 80 * 45, 10);
   EXPECT_EQ(s.next_pass(), 20u);  // then one photon pass per camera pass
@@ -76,14 +76,14 @@ TEST(CausticsSchedule, ProbeThenBudgetFromUsefulPixels) {
   EXPECT_EQ(s.plan(1), 1u << 16);  // the probe
   s.pass_done(1, 1 << 16, 500);
   EXPECT_TRUE(s.map_active());
-  s.iteration_done(1, 0.25);
+  s.iteration_done(1, {0.25, 0.25});
   EXPECT_EQ(s.plan(2), uint64_t(0.25 * (1 << 20)));  // u * N_max
   s.pass_done(2, uint64_t(0.25 * (1 << 20)), 1000);
   // 262144 photon paths vs 200000 camera paths: one pass serves round(1.31) = 1 iteration.
-  s.iteration_done(2, 1e-6);
+  s.iteration_done(2, {1e-6, 1e-6});
   EXPECT_EQ(s.plan(3), (1u << 20) / 64);  // clamped to N_min
   s.pass_done(3, (1 << 20) / 64, 10);
-  s.iteration_done(3, 1.0);
+  s.iteration_done(3, {1.0, 1.0});
   EXPECT_EQ(s.plan(4), 1u << 20);  // N_max
   EXPECT_EQ(s.passes(), 3u);
 }
@@ -96,19 +96,19 @@ TEST(CausticsSchedule, StoredPhotonsCappedByCameraPasses) {
   PhotonSchedule s(c);
   EXPECT_EQ(s.plan(1), 1u << 16);
   s.pass_done(1, 1 << 16, 1 << 16);  // 1 photon per path
-  s.iteration_done(1, 1.0);
+  s.iteration_done(1, {1.0, 1.0});
   EXPECT_EQ(s.plan(2), 38400u);      // 230400 / 6 stored photons: 38400 paths, not N_max = 115200
   s.pass_done(2, 38400, 38400 * 2);  // 2 per path: half the paths
-  s.iteration_done(2, 1.0);
+  s.iteration_done(2, {1.0, 1.0});
   EXPECT_EQ(s.plan(3), 19200u);
   s.pass_done(3, 19200, 19200 * 3 / 10);  // 0.3 per path: the cap is above N_max
-  s.iteration_done(3, 1.0);
+  s.iteration_done(3, {1.0, 1.0});
   EXPECT_EQ(s.plan(4), 115200u);
-  s.iteration_done(3, 0.25);
+  s.iteration_done(3, {0.25, 0.25});
   EXPECT_EQ(s.plan(4), 28800u);      // u N_max, under the cap
   s.pass_done(4, 28800, 0);          // a pass storing nothing keeps the last yield
   s.pass_done(5, 1 << 14, 1 << 17);  // 8 per path: the cap, but never below N_min
-  s.iteration_done(5, 1.0);
+  s.iteration_done(5, {1.0, 1.0});
   EXPECT_EQ(s.plan(s.next_pass()), c.effective_min());
 }
 
@@ -116,7 +116,7 @@ TEST(CausticsSchedule, LargePassesServeSeveralIterations) {
   PhotonSchedule s(config(4096));  // a small image: 4096 camera paths per iteration
   s.pass_done(1, 1 << 16, 100);    // probe: 65536 paths = 16 camera passes
   for (uint64_t i = 1; i < 17; ++i) {
-    s.iteration_done(i, 0.5);
+    s.iteration_done(i, {0.5, 0.5});
     EXPECT_EQ(s.plan(i + 1), i + 1 < 17 ? 0u : uint64_t(0.5 * (1 << 20))) << i;
   }
 }
@@ -129,7 +129,7 @@ TEST(CausticsSchedule, BackOffWhenUseless) {
   EXPECT_EQ(s.plan(2), 0u);
   EXPECT_EQ(s.plan(3), (1u << 20) / 64);  // after 2^1 iterations without photons, N_min
   s.pass_done(3, (1 << 20) / 64, 5);      // photons, but no useful pixel
-  s.iteration_done(3, 0.0);
+  s.iteration_done(3, {0.0, 0.0});
   EXPECT_FALSE(s.map_active());
   EXPECT_EQ(s.idle_level(), 2u);
   EXPECT_EQ(s.next_pass(), 3u + 1 + 4);
@@ -146,9 +146,27 @@ TEST(CausticsSchedule, BackOffWhenUseless) {
   EXPECT_EQ(s.next_pass(), before + 256);
   // Any useful pixel resets the idle level.
   s.pass_done(s.next_pass(), 1 << 14, 100);
-  s.iteration_done(s.next_pass(), 0.01);
+  s.iteration_done(s.next_pass(), {0.01, 0.01});
   EXPECT_EQ(s.idle_level(), 0u);
   EXPECT_TRUE(s.map_active());
+}
+
+// The budget follows the pixels where merges bring over 10 % of the light; pixels where they bring
+// only 1-10 % keep the map alive at N_min instead of backing off.
+TEST(CausticsSchedule, FaintMergesKeepTheMinimumBudget) {
+  PhotonSchedule s(config(100000));
+  s.pass_done(1, 1 << 16, 500);
+  s.iteration_done(1, {0.0, 0.3});  // no pixel over 10 %, 30 % over 1 %
+  EXPECT_TRUE(s.map_active());
+  EXPECT_EQ(s.idle_level(), 0u);
+  EXPECT_EQ(s.plan(2), (1u << 20) / 64);  // N_min, every iteration
+  s.pass_done(2, (1 << 20) / 64, 50);
+  s.iteration_done(2, {0.125, 0.5});
+  EXPECT_EQ(s.plan(3), uint64_t(0.125 * (1 << 20)));  // the budget reads the 10 % ratio only
+  s.pass_done(3, uint64_t(0.125 * (1 << 20)), 50);
+  s.iteration_done(3, {0.0, 0.0});
+  EXPECT_FALSE(s.map_active());
+  EXPECT_EQ(s.idle_level(), 1u);
 }
 
 TEST(CausticsSchedule, DormantPlansNothing) {
