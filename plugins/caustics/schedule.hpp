@@ -69,11 +69,14 @@ struct ScheduleConfig {
   // through the photons stored per path in the previous pass. Lookups and the map build scale with the
   // stored photons, not with the paths: the pool stores ~1.06 photons per path, the other scenes
   // 0.3-0.85, and its lookups alone cost ~28 % of nimbus.pt's time at 0.5 paths per camera path
-  // (docs/performance.md §4). 1/6 binds on the pool only (~37,000 stored photons per pass at 640x360
+  // (docs/performance.md §4). 1/6 bound on the pool only (~37,000 stored photons per pass at 640x360
   // instead of ~74,000): measured side by side on 2 cores, its time per iteration fell by 16 % (overhead
-  // 78 % -> 42 %, the others unchanged) at 1.4-1.6x its variance at equal time. 1/8 saved only 2 % more.
-  // 0 removes the cap (best equal-time error); the overhead goal is why it is on.
-  double stored_photons_per_camera_path = 1.0 / 6;
+  // 78 % -> 42 %, the others unchanged) at 1.4-1.6x its variance at equal time. That left the pool at
+  // 42-48 %, above the spec's 40 % target, so by the spec's rule for N_max ("revisit if overhead above
+  // target") the cap is now 1/8 (~29,000 photons): time per iteration 0.95 of 1/6's, overhead 47 % ->
+  // 39 %, at 1.24x the variance at equal time (1/10: 0.92, 35 %, 1.49x). The other scenes store under
+  // 1/8 per camera path. 0 removes the cap (best equal-time error).
+  double stored_photons_per_camera_path = 1.0 / 8;
   uint64_t camera_paths = 1;  // camera paths per iteration (the render region's pixels)
 
   uint64_t effective_max() const {

@@ -88,8 +88,8 @@ TEST(CausticsSchedule, ProbeThenBudgetFromUsefulPixels) {
   EXPECT_EQ(s.passes(), 3u);
 }
 
-// The cap on stored photons (default 1/6 per camera path) binds through the previous pass's photons per
-// path: a scene storing ~1 photon per path (the pool) gets fewer paths, one storing 0.3 (the ring) none.
+// The cap on stored photons (default 1/8 per camera path) binds through the previous pass's photons per
+// path: a scene storing ~1 photon per path (the pool) gets fewer paths, one storing 0.2 none.
 TEST(CausticsSchedule, StoredPhotonsCappedByCameraPasses) {
   ScheduleConfig c;
   c.camera_paths = 640 * 360;
@@ -97,11 +97,11 @@ TEST(CausticsSchedule, StoredPhotonsCappedByCameraPasses) {
   EXPECT_EQ(s.plan(1), 1u << 16);
   s.pass_done(1, 1 << 16, 1 << 16);  // 1 photon per path
   s.iteration_done(1, {1.0, 1.0});
-  EXPECT_EQ(s.plan(2), 38400u);      // 230400 / 6 stored photons: 38400 paths, not N_max = 115200
-  s.pass_done(2, 38400, 38400 * 2);  // 2 per path: half the paths
+  EXPECT_EQ(s.plan(2), 28800u);          // 230400 / 8 stored photons: 28800 paths, not N_max = 115200
+  s.pass_done(2, 28800, 28800 * 3 / 2);  // 1.5 per path: two thirds of the paths
   s.iteration_done(2, {1.0, 1.0});
   EXPECT_EQ(s.plan(3), 19200u);
-  s.pass_done(3, 19200, 19200 * 3 / 10);  // 0.3 per path: the cap is above N_max
+  s.pass_done(3, 19200, 19200 / 5);  // 0.2 per path: the cap is above N_max
   s.iteration_done(3, {1.0, 1.0});
   EXPECT_EQ(s.plan(4), 115200u);
   s.iteration_done(3, {0.25, 0.25});
