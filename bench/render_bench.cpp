@@ -11,9 +11,9 @@
 #include <filesystem>
 #include <random>
 
+#include <nimbus/cpp/sampling.hpp>
 #include "abi/host_services.hpp"
 #include "core/hash.hpp"
-#include "core/sampling.hpp"
 #include "render/plugin_registry.hpp"
 #include "render/render_context.hpp"
 #include "render/render_session.hpp"

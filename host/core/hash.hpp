@@ -1,25 +1,12 @@
-// Hashing for deterministic random streams: splitmix64 finaliser and combination of several keys.
+// Seeding of the deterministic random streams the host derives for plugins (nimbus.host.rng).
 #pragma once
 
 #include <cstdint>
-#include <initializer_list>
 
 #include <nimbus/rng.h>
+#include <nimbus/cpp/rng.hpp>
 
 namespace nimbus {
-
-constexpr uint64_t mix64(uint64_t z) {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-constexpr uint64_t hash_keys(std::initializer_list<uint64_t> keys) {
-  uint64_t h = 0x6a09e667f3bcc909ULL;
-  for (uint64_t k : keys) h = mix64(h ^ mix64(k));
-  return h;
-}
 
 // PCG32 seeding as in the reference implementation (pcg32_srandom_r): stream selects the increment.
 inline nimbus_rng_t make_rng(uint64_t seed_state, uint64_t stream) {

@@ -3,7 +3,7 @@
 
 #include <array>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
 

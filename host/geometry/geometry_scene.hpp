@@ -8,8 +8,8 @@
 #include <memory>
 #include <vector>
 
+#include <nimbus/cpp/math.hpp>
 #include "core/expected.hpp"
-#include "core/math.hpp"
 #include "scene/scene_desc.hpp"
 
 namespace nimbus {

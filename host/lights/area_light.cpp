@@ -1,5 +1,5 @@
 // Emissive shapes: uniform sampling by area, or by solid angle for spheres seen from outside.
-#include "core/sampling.hpp"
+#include <nimbus/cpp/sampling.hpp>
 #include "lights/light.hpp"
 
 namespace nimbus {

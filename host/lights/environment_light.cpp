@@ -1,6 +1,6 @@
 // Environment: lat-long map (importance-sampled with a 2-D piecewise-constant distribution over
 // luminance x sin(theta)) or a uniform colour. Directions use +z as up; u runs with the azimuth.
-#include "core/sampling.hpp"
+#include <nimbus/cpp/sampling.hpp>
 #include "lights/light.hpp"
 
 namespace nimbus {

@@ -3,7 +3,7 @@
 
 #include <cstring>
 
-#include "core/sampling.hpp"
+#include <nimbus/cpp/sampling.hpp>
 
 namespace nimbus {
 

@@ -7,9 +7,9 @@
 
 #include <variant>
 
-#include "core/alias_table.hpp"
+#include <nimbus/cpp/alias_table.hpp>
+#include <nimbus/cpp/math.hpp>
 #include "core/distribution.hpp"
-#include "core/math.hpp"
 #include "geometry/geometry_scene.hpp"
 
 namespace nimbus {

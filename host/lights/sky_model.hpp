@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
 

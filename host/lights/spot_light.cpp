@@ -1,5 +1,5 @@
 // Spot lights: a point light whose intensity falls off smoothly towards the edge of a cone.
-#include "core/sampling.hpp"
+#include <nimbus/cpp/sampling.hpp>
 #include "lights/light.hpp"
 
 namespace nimbus {

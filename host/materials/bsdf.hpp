@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <variant>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 #include "materials/conductor.hpp"
 #include "materials/dielectric.hpp"
 #include "materials/diffuse.hpp"

@@ -1,6 +1,6 @@
 #include "materials/diffuse.hpp"
 
-#include "core/sampling.hpp"
+#include <nimbus/cpp/sampling.hpp>
 
 namespace nimbus {
 

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 #include "materials/scattering.hpp"
 
 namespace nimbus {

@@ -1,7 +1,7 @@
 // Unpolarised Fresnel reflectance of smooth boundaries. Part of scattering.hpp; include that.
 #pragma once
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 #include "materials/local_frame.hpp"
 
 namespace nimbus {

@@ -4,7 +4,7 @@
 
 #include <optional>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
 

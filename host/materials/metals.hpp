@@ -6,7 +6,7 @@
 #include <optional>
 #include <string_view>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
 

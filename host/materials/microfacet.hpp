@@ -6,7 +6,7 @@
 // the pole (where z rounds to 1) and keeps the visible-normal pdf finite at the horizon.
 #pragma once
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 #include "materials/local_frame.hpp"
 
 namespace nimbus {

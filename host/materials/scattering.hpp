@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 #include "materials/fresnel.hpp"
 #include "materials/local_frame.hpp"
 #include "materials/microfacet.hpp"

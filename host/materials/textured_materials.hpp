@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
+#include <nimbus/cpp/math.hpp>
 #include "core/expected.hpp"
-#include "core/math.hpp"
 #include "materials/bsdf.hpp"
 #include "materials/texture_set.hpp"
 #include "scene/scene_desc.hpp"

@@ -3,8 +3,8 @@
 
 #include <nimbus/scene.h>
 
-#include "core/math.hpp"
-#include "core/sampling.hpp"
+#include <nimbus/cpp/math.hpp>
+#include <nimbus/cpp/sampling.hpp>
 #include "scene/scene_desc.hpp"
 
 namespace nimbus {

@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
 

@@ -6,8 +6,8 @@
 
 #include <string>
 
+#include <nimbus/cpp/math.hpp>
 #include "core/distribution.hpp"
-#include "core/math.hpp"
 
 namespace nimbus {
 

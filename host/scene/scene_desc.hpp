@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 #include "core/transform.hpp"
 
 namespace nimbus {

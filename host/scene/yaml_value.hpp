@@ -14,7 +14,7 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 #include "scene/scene_desc.hpp"
 
 namespace nimbus::scene_yaml {

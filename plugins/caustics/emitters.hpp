@@ -26,9 +26,9 @@
 
 #include <vector>
 
-#include "core/alias_table.hpp"
-#include "core/math.hpp"
-#include "core/sampling.hpp"
+#include <nimbus/cpp/alias_table.hpp>
+#include <nimbus/cpp/math.hpp>
+#include <nimbus/cpp/sampling.hpp>
 
 namespace nimbus::caustics {
 

@@ -15,11 +15,15 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/hash.hpp"
-#include "core/math.hpp"
-#include "parallel.hpp"
+#include <nimbus/cpp/math.hpp>
+#include <nimbus/cpp/rng.hpp>
+#include <nimbus/cpp/tasks.hpp>
 
 namespace nimbus::caustics {
+
+using sdk::parallel_ranges;
+using sdk::ParallelFor;
+using sdk::serial_for;
 
 class OccupancyFilter {
  public:

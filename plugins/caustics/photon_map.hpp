@@ -24,11 +24,15 @@
 #include <functional>
 #include <vector>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
+#include <nimbus/cpp/tasks.hpp>
 #include "occupancy_filter.hpp"
-#include "parallel.hpp"
 
 namespace nimbus::caustics {
+
+using sdk::parallel_ranges;
+using sdk::ParallelFor;
+using sdk::serial_for;
 
 // Unit vector <-> two 16-bit octahedral coordinates (Cigolle et al. 2014), packed in 32 bits.
 inline uint32_t encode_octahedral(const Vec3f &v) {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/alias_table.hpp"
+#include <nimbus/cpp/alias_table.hpp>
 
 namespace nimbus::lights {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <nimbus/lights.h>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus::lights {
 

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/alias_table.hpp"
+#include <nimbus/cpp/alias_table.hpp>
 #include "light_bounds.hpp"
 
 namespace nimbus::lights {

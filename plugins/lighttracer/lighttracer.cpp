@@ -8,7 +8,7 @@
 // estimate the whole image once (the film divides by the iteration count).
 #include <nimbus/nimbus.hpp>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus::lt {
 namespace {

@@ -2,7 +2,8 @@
 #
 # Every public header must compile on its own, twice included (guards), as strict C99 and as C++17
 # (sdk-idioms.md §1.1): a plugin author may use either, and a header that only compiles after another
-# one, or only as C++, breaks them. nimbus.hpp is the C++ wrapper and is checked as C++17 only.
+# one, or only as C++, breaks them. nimbus.hpp is the C++ wrapper and is checked as C++17 only; the
+# C++ kit (nimbus/cpp/*.hpp) as C++20, each header on its own.
 file(GLOB headers ${INCLUDE}/nimbus/*.h)
 list(LENGTH headers count)
 if(count LESS 10)
@@ -32,8 +33,16 @@ endforeach()
 set(src ${WORK}/nimbus.hpp.check)
 file(WRITE ${src} "#include <nimbus/nimbus.hpp>\n#include <nimbus/nimbus.hpp>\n")
 try_compile_header(nimbus.hpp ${CXX} c++ c++17 ${src})
+file(GLOB kit ${INCLUDE}/nimbus/cpp/*.hpp)
+list(LENGTH kit kit_count)
+foreach(h IN LISTS kit)
+  get_filename_component(name ${h} NAME)
+  set(src ${WORK}/cpp_${name}.check)
+  file(WRITE ${src} "#include <nimbus/cpp/${name}>\n#include <nimbus/cpp/${name}>\n")
+  try_compile_header(cpp/${name} ${CXX} c++ c++20 ${src})
+endforeach()
 
 if(failed)
   message(FATAL_ERROR "headers that do not compile:${failed}")
 endif()
-message(STATUS "${count} headers compile as C99 and C++17; nimbus.hpp as C++17")
+message(STATUS "${count} headers compile as C99 and C++17; nimbus.hpp as C++17; ${kit_count} kit headers as C++20")

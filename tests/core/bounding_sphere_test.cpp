@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "core/bounding_sphere.hpp"
-#include "core/sampling.hpp"
+#include <nimbus/cpp/bounding_sphere.hpp>
+#include <nimbus/cpp/sampling.hpp>
 
 namespace nimbus {
 namespace {

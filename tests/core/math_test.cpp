@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
 namespace {

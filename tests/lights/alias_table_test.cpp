@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/alias_table.hpp"
+#include <nimbus/cpp/alias_table.hpp>
 
 namespace nimbus {
 namespace {

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <random>
 
-#include "core/sampling.hpp"
+#include <nimbus/cpp/sampling.hpp>
 #include "lights/light_set.hpp"
 #include "scene/scene_parser.hpp"
 

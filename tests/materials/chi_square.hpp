@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 #include "test_helpers.hpp"
 
 namespace nimbus::test {

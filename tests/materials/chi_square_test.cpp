@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nimbus/cpp/sampling.hpp>
 #include "chi_square.hpp"
-#include "core/sampling.hpp"
 #include "test_helpers.hpp"
 
 namespace nimbus::test {

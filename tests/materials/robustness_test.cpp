@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/sampling.hpp"
+#include <nimbus/cpp/sampling.hpp>
 #include "test_helpers.hpp"
 
 namespace nimbus::test {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 #include "materials/bsdf.hpp"
 
 namespace nimbus::test {

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nimbus/cpp/math.hpp>
 #include "abi/host_services.hpp"
-#include "core/math.hpp"
 #include "film/image_read.hpp"
 #include "render/plugin_registry.hpp"
 #include "render/render_session.hpp"

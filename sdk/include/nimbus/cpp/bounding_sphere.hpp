@@ -6,7 +6,7 @@
 
 #include <span>
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
 

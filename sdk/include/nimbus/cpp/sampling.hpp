@@ -1,7 +1,7 @@
 // Warps from the unit square to common domains, with their densities (pbrt-v4, ch. A.5).
 #pragma once
 
-#include "core/math.hpp"
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
 

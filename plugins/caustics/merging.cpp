@@ -1,0 +1,45 @@
+// Photon lookups of the camera side; see merging.hpp.
+#include "merging.hpp"
+
+namespace nimbus::caustics {
+
+void merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta,
+                   const CameraMis &mis_state, float r, uint32_t s, CausticsRecord &rec) {
+  const float r2 = r * r;
+  const float neff = float(mc.map_paths);
+  const float inv_paths = 1.0f / neff;
+  const float m_neff = mis(neff), eta = mis(kPi * r2 * neff);
+  const Vec3f ng = Vec3f::load(ix.ng);
+  float wo_arr[3];
+  wo.store(wo_arr);
+  const float kernel_norm = 2 / (kPi * r2);
+  // Photons on the same flat surface carry the same quantised normal: skip decoding those. Encoded at
+  // the first photon found: most lookups find none (query() turns them away first).
+  uint32_t ng_code = 0;
+  bool ng_encoded = false;
+  Rgb sum(0);  // without LightMix, one record entry per lookup
+  mc.map->query(Vec3f::load(ix.p), r, [&](const PhotonData &ph, float d2) {
+    const uint32_t k = s + ph.depth();
+    if (k > mc.max_depth) return;
+    if (!ng_encoded) ng_code = encode_octahedral(ng), ng_encoded = true;
+    if (ph.normal != ng_code && !(dot(decode_octahedral(ph.normal), ng) > 0)) return;
+    const Vec3f wp = decode_octahedral(ph.dir);
+    float wp_arr[3], f[3], pdf_fwd = 0, pdf_rev = 0;
+    wp.store(wp_arr);
+    mc.bsdf->eval(mc.host, &ix, wo_arr, wp_arr, NIMBUS_MODE_RADIANCE, f, &pdf_fwd, &pdf_rev);
+    const Rgb fr = Rgb::load(f);
+    if (is_black(fr)) return;
+    const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
+                                 m_neff, mis_state.gamma_sum(k));
+    const float kernel = kernel_norm * (1 - d2 / r2);
+    const Rgb c = fr * Rgb::load(ph.power) * (w * kernel);
+    if (!is_finite(c) || is_black(c)) return;
+    if (mc.ids.lightmix)
+      rec.add_merge(beta * c * inv_paths, (*mc.light_group)[ph.light()], mc.ids);
+    else
+      sum += c;
+  });
+  if (!mc.ids.lightmix && !is_black(sum)) rec.add_merge(beta * sum * inv_paths, 0, mc.ids);
+}
+
+}  // namespace nimbus::caustics

@@ -1,0 +1,120 @@
+// The camera side of photon merging (solver spec sections 3.3-3.5): the path extension of the camera-path
+// layer that a camera pass uses while a photon map is active. The same path (same random numbers) as
+// nimbus.pt also carries the MIS state, looks photons up at its rough vertices and weights BSDF hits and
+// next-event estimation against merging (mis.hpp), so the techniques form one power-heuristic combination.
+#pragma once
+
+#include <nimbus/nimbus.hpp>
+
+#include <vector>
+
+#include <nimbus/cpp/camera_path.hpp>
+
+#include "caustics_record.hpp"
+#include "emitters.hpp"
+#include "mis.hpp"
+#include "occupancy_filter.hpp"
+#include "photon_map.hpp"
+#include "schedule.hpp"
+#include "sharpness.hpp"
+
+namespace nimbus::caustics {
+
+// What merging reads during a camera pass: fixed from begin_iteration to end_iteration.
+struct MergeContext {
+  const nimbus_host_t *host = nullptr;
+  const nimbus_host_bsdf_v1_t *bsdf = nullptr;
+  const PhotonKdTree *map = nullptr;
+  const EmitterSet *emitters = nullptr;
+  const std::vector<uint32_t> *light_group = nullptr;  // LightMix group of each light
+  ElementIds ids;
+  uint32_t max_depth = 0;
+  uint64_t map_paths = 0;       // photon paths behind the map (N_eff)
+  float radius_per_length = 0;  // merge radius per unit path length at the map's pass
+  float scene_radius = 1;
+};
+
+// Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
+void merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta,
+                   const CameraMis &mis_state, float r, uint32_t s, CausticsRecord &rec);
+
+class MergingPath {
+ public:
+  static constexpr bool kReversePdfs = true;
+
+  MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii) : mc_(mc), radii_(lookup_radii) {}
+
+  void arrive(float t, const nimbus_interaction_t &ix, const Vec3f &dir) {
+    length_ += t;
+    mis_.arrive(std::abs(dot(Vec3f::load(ix.ng), dir)));
+  }
+
+  sdk::PathWeight hit(const sdk::LightHit &h) const {
+    const float nee_ratio = h.specular ? 0.0f : mis(h.light_pdf / h.bsdf_pdf);
+    const float lp = mc_.emitters->lp(h.light, h.p, h.n, h.wo, Vec3f::load(h.prev->p));
+    return {hit_weight(nee_ratio, mis_.s_cam(h.segments), lp), lp > 0 && mis_.eligible(h.segments)};
+  }
+
+  void vertex(const sdk::PathVertex &v, CausticsRecord &rec) {
+    const bool rough = !is_sharp(mc_.bsdf, mc_.host, *v.ix, v.lobes);
+    lookup_ = mis_.append(rough);
+    if (lookup_) {
+      if (mis_.rough_count == 1) radius_ = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
+      r_ = mis_.rough_count == 1 ? radius_ : r_ * kRadiusGrowth;
+    }
+    // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
+    if (lookup_ && v.segments + 2 <= mc_.max_depth) {
+      radii_.add(r_);
+      merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, r_, v.segments, rec);
+    }
+  }
+
+  sdk::PathWeight nee(const sdk::LightSample &s) const {
+    const nimbus_light_incident_t &ls = *s.ls;
+    const bool infinite = ls.flags & NIMBUS_LIGHT_INFINITE;
+    const float hit_ratio = s.delta ? 0.0f : mis(s.bsdf_pdf / s.light_pdf);
+    const float lp =
+        mc_.emitters->lp(s.light, Vec3f::load(ls.p), Vec3f::load(ls.n), -s.wi, Vec3f::load(s.ix->p));
+    const float cos_j = std::abs(dot(Vec3f::load(s.ix->ng), s.wi));
+    const float d2 = infinite ? 1.0f : ls.dist * ls.dist;
+    float nk = s.pmf;  // delta lights
+    if (!s.delta) nk = infinite ? s.light_pdf : s.light_pdf * std::abs(dot(Vec3f::load(ls.n), s.wi)) / d2;
+    const float w = nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk);
+    return {w, lp > 0 && mis_.eligible(s.segments)};
+  }
+
+  void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
+               uint32_t segments) {
+    mis_.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup_, segments,
+                 kPi * r_ * r_ * float(mc_.map_paths));
+  }
+
+ private:
+  const MergeContext &mc_;
+  RadiusHistogram &radii_;  // this worker's lookup radii
+  CameraMis mis_;
+  float radius_ = 0;     // r_a: fixed at the first rough vertex (spec 3.5)
+  float r_ = 0;          // r_s of the current lookup vertex: r_a * kRadiusGrowth^(c_s - 1)
+  float length_ = 0;     // path length from the lens to the current vertex
+  bool lookup_ = false;  // the current vertex looks photons up
+};
+
+// The plain path (nimbus.pt's estimator) of camera passes without a photon map, noting whether it met a
+// sharp vertex: that wakes a dormant solver (zero-cost rule, spec 9).
+class WatchingPath : public sdk::PlainPath {
+ public:
+  WatchingPath(const nimbus_host_bsdf_v1_t *bsdf, const nimbus_host_t *h, uint8_t &saw_sharp)
+      : bsdf_(bsdf), h_(h), saw_sharp_(saw_sharp) {}
+  void vertex(const sdk::PathVertex &v, CausticsRecord &) {
+    if (!saw_sharp_ && has(v.lobes, NIMBUS_LOBE_SPECULAR | NIMBUS_LOBE_GLOSSY) &&
+        is_sharp(bsdf_, h_, *v.ix, v.lobes))
+      saw_sharp_ = 1;
+  }
+
+ private:
+  const nimbus_host_bsdf_v1_t *bsdf_;
+  const nimbus_host_t *h_;
+  uint8_t &saw_sharp_;
+};
+
+}  // namespace nimbus::caustics

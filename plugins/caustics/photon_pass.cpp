@@ -1,0 +1,108 @@
+// One photon pass and the photon map build; see photon_pass.hpp.
+#include "photon_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <nimbus/cpp/tasks.hpp>
+
+namespace nimbus::caustics {
+namespace {
+
+// Photon paths per task: small enough that a pass at the N_min floor shares out evenly over the
+// workers.
+constexpr uint64_t kPhotonPathsPerTask = 1024;
+// A task stops tracing when its buffer holds this many photons per path (a memory guard far above what
+// caustic scenes store). A task that stops early leaves the end of its run of emission strata
+// (emission_strata.hpp) unsampled, so that region of the emitter is missing from the pass: the guard
+// trades that bias for bounded memory, and only in scenes that would otherwise overflow.
+constexpr uint64_t kPhotonsPerPathCap = 4;
+// Share of lookups whose radius the occupancy filter in front of the photon map covers
+// (occupancy_filter.hpp).
+constexpr double kFilterShare = 0.95;
+
+}  // namespace
+
+nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks,
+                                const nimbus_host_t *h, uint32_t pass, uint64_t paths, float scene_radius,
+                                sdk::PerWorker<RadiusHistogram> &lookup_radii, Result &result) {
+  const uint64_t task_count = (paths + kPhotonPathsPerTask - 1) / kPhotonPathsPerTask;
+  chunks_.resize(task_count);
+  for (PhotonChunk &c : chunks_) c.reset();
+  struct Job {
+    const PhotonTracer *tracer;
+    std::vector<PhotonChunk> *chunks;
+    uint32_t pass;
+    uint64_t paths;
+  } job{&tracer, &chunks_, pass, paths};
+  const auto fn = [](const nimbus_thread_ctx_t *ctx, uint64_t b, uint64_t e, void *user) {
+    const Job &j = *static_cast<Job *>(user);
+    PhotonChunk &c = (*j.chunks)[b / kPhotonPathsPerTask];
+    c.photons.reserve(256);
+    const size_t cap = size_t(e - b) * kPhotonsPerPathCap;
+    for (uint64_t p = b; p < e && c.photons.size() < cap; ++p) {
+      j.tracer->trace(*ctx, p, j.paths, j.pass, c);
+      ++c.paths;
+    }
+  };
+  if (nimbus_status_t s = tasks->parallel_for(h, paths, kPhotonPathsPerTask, fn, &job); s != NIMBUS_OK)
+    return s;
+  // Concatenate in task order: photon indices never depend on threads.
+  size_t total = 0;
+  uint64_t done = 0;
+  bool sharp = false;
+  Vec3f sharp_lo(kInfinity), sharp_hi(-kInfinity);
+  for (const PhotonChunk &c : chunks_) {
+    total += c.photons.size(), done += c.paths, sharp |= c.saw_sharp;
+    sharp_lo = min(sharp_lo, c.sharp_lo), sharp_hi = max(sharp_hi, c.sharp_hi);
+  }
+  // The probe's own map keeps the scene's target (camera-side MIS must use the densities its photons
+  // came from), so the new target takes effect with the next pass.
+  result = {};
+  if (pass == 1 && sharp) result.target = target_from_probe(chunks_, sharp_lo, sharp_hi, scene_radius);
+  const sdk::ParallelFor parallel = sdk::host_parallel_for(tasks, h);
+  // The chunks in task order, copied concurrently.
+  photons_.resize(total);
+  std::vector<size_t> offset(chunks_.size() + 1, 0);
+  for (size_t i = 0; i < chunks_.size(); ++i) offset[i + 1] = offset[i] + chunks_[i].photons.size();
+  parallel(chunks_.size(), [&](size_t i) {
+    std::copy(chunks_[i].photons.begin(), chunks_[i].photons.end(), photons_.begin() + ptrdiff_t(offset[i]));
+  });
+  result.paths = done;
+  result.saw_sharp = sharp;
+  // The filter's reach: the radius 95 % of the lookups since the last pass stayed within (radii only
+  // shrink from pass to pass), so nearly every lookup can ask it first.
+  RadiusHistogram radii;
+  for (RadiusHistogram &r : lookup_radii) radii.add(r), r.clear();
+  map_.build(photons_, parallel, radii.quantile(kFilterShare));
+  return NIMBUS_OK;
+}
+
+void PhotonPass::release() {
+  map_ = PhotonKdTree();
+  chunks_ = std::vector<PhotonChunk>();
+  photons_ = std::vector<Photon>();
+}
+
+void learn_area_pdfs(EmitterSet &emitters, const nimbus_host_lights_v1_t *lights,
+                     const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h) {
+  struct Job {
+    EmitterSet *emitters;
+    const nimbus_host_lights_v1_t *lights;
+    const nimbus_host_t *h;
+  } job{&emitters, lights, h};
+  const auto fn = [](const nimbus_thread_ctx_t *, uint64_t b, uint64_t e, void *user) {
+    const Job &j = *static_cast<Job *>(user);
+    for (uint64_t l = b; l < e; ++l) {
+      Emitter &em = (*j.emitters)[l];
+      if (em.kind != EmitterKind::Area) continue;
+      const float u[4] = {0.5f, 0.5f, 0.25f, 0.5f};
+      nimbus_light_emission_t out{};
+      j.lights->sample_emission(j.h, uint32_t(l), u, &out);
+      em.pdf_pos = out.pdf_pos > 0 && std::isfinite(out.pdf_pos) ? out.pdf_pos : 0.0f;
+    }
+  };
+  tasks->parallel_for(h, emitters.size(), 64, fn, &job);
+}
+
+}  // namespace nimbus::caustics

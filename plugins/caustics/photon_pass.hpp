@@ -1,0 +1,49 @@
+// One photon pass (solver spec section 5): photon paths traced as host tasks into per-task chunks,
+// concatenated in task order (photon indices never depend on threads), and the photon map rebuilt. The
+// buffers keep their memory from pass to pass: allocated anew, their first touches (page faults) are a
+// large share of the map build.
+#pragma once
+
+#include <nimbus/nimbus.hpp>
+
+#include <vector>
+
+#include <nimbus/cpp/per_worker.hpp>
+
+#include "emission_target.hpp"
+#include "emitters.hpp"
+#include "occupancy_filter.hpp"
+#include "photon_map.hpp"
+#include "photon_tracer.hpp"
+
+namespace nimbus::caustics {
+
+class PhotonPass {
+ public:
+  struct Result {
+    uint64_t paths = 0;      // photon paths completed (N_eff of the new map)
+    bool saw_sharp = false;  // some photon path met a sharp vertex
+    EmissionTarget target;   // after the probe (pass 1) only: where later passes aim
+  };
+
+  // [main-thread] Traces `paths` photon paths of pass `pass` (1-based) and rebuilds the map. The lookup
+  // radii since the last pass (emptied here) set the reach of the map's occupancy filter.
+  nimbus_status_t run(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h,
+                      uint32_t pass, uint64_t paths, float scene_radius,
+                      sdk::PerWorker<RadiusHistogram> &lookup_radii, Result &result);
+
+  const PhotonKdTree &map() const { return map_; }
+  // [main-thread] Frees the map and the buffers (end of a render).
+  void release();
+
+ private:
+  std::vector<PhotonChunk> chunks_;  // one buffer per task
+  std::vector<Photon> photons_;      // the tasks' photons in task order
+  PhotonKdTree map_;
+};
+
+// P_pos of area lights (uniform area sampling: a constant), from one sample_emission per light.
+void learn_area_pdfs(EmitterSet &emitters, const nimbus_host_lights_v1_t *lights,
+                     const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h);
+
+}  // namespace nimbus::caustics

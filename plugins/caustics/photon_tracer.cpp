@@ -1,0 +1,196 @@
+// Photon paths (solver spec section 4); see photon_tracer.hpp.
+#include "photon_tracer.hpp"
+
+#include <cstring>
+
+#include <nimbus/cpp/rng.hpp>
+
+#include "emission_strata.hpp"
+#include "mis.hpp"
+#include "sharpness.hpp"
+
+namespace nimbus::caustics {
+namespace {
+
+// The emitter surface point a photon of area light `light` left from, as an interaction.
+nimbus_interaction_t emission_point(uint32_t light, const nimbus_light_emission_t &es) {
+  nimbus_interaction_t on_light{};
+  std::memcpy(on_light.p, es.org, sizeof(on_light.p));
+  std::memcpy(on_light.ng, es.n, sizeof(on_light.ng));
+  std::memcpy(on_light.ns, es.n, sizeof(on_light.ns));
+  on_light.light_id = light;
+  on_light.flags = NIMBUS_IX_EMISSIVE;
+  return on_light;
+}
+
+}  // namespace
+
+// One photon path: emission by power-proportional light selection, storage at rough vertices after a
+// sharp one, termination after two consecutive rough vertices (spec 4), MIS state per photon.
+void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t paths, uint32_t pass,
+                         PhotonChunk &out) const {
+  const nimbus_host_t *h = h_;
+  nimbus_rng_t rng;
+  svc_.rng->derive(h, path, pass, kStreamPhoton, &rng);
+  float sel = 0;
+  const int64_t li = emitters_.pick(next_uniform(rng), &sel);
+  if (li < 0 || !(sel > 0)) return;
+  const uint32_t light = uint32_t(li);
+  const Emitter &em = emitters_[light];
+  float ue[4] = {next_uniform(rng), next_uniform(rng), next_uniform(rng), next_uniform(rng)};
+  // The light's main pair of numbers (position for the sun, environment and area lights; direction
+  // for point and spot lights) comes stratified along the pass (emission_strata.hpp).
+  {
+    const float xi = next_uniform(rng), j0 = next_uniform(rng), j1 = next_uniform(rng);
+    const Vec2f s = emission_sample(path, paths, xi, j0, j1);
+    const int first = em.infinite() || em.kind == EmitterKind::Area ? 0 : 2;
+    ue[first] = s.x, ue[first + 1] = s.y;
+  }
+  nimbus_light_emission_t es;
+  svc_.lights->sample_emission(h, light, ue, &es);
+  if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0)) return;
+  const bool delta_pos = es.flags & NIMBUS_LIGHT_DELTA_POSITION;
+  const bool infinite = es.flags & NIMBUS_LIGHT_INFINITE;
+  const Vec3f n_e = Vec3f::load(es.n);
+  Vec3f dir0 = Vec3f::load(es.dir);
+  float pdf_dir = es.pdf_dir;
+  Rgb Le = Rgb::load(es.Le);
+  // Infinite lights: the solver's own emission disk (emitters.hpp), same numbers as the host's.
+  const Vec3f org = infinite ? emitters_.emission_origin(light, dir0, ue[0], ue[1]) : Vec3f::load(es.org);
+  // Finite lights: the host's emission point, then a direction in the cone towards the target.
+  if (const EmissionCone cone = infinite ? EmissionCone() : emitters_.cone(light, org); cone.active()) {
+    dir0 = cone.sample(ue[2], ue[3]);
+    pdf_dir = cone.pdf();
+    Le = emitted(light, em, es, dir0);
+  }
+  const float pdf_pos = infinite ? em.pdf_pos : es.pdf_pos;
+  const float cos_e = delta_pos || infinite ? 1.0f : std::abs(dot(n_e, dir0));
+  const float lp = sel * pdf_pos * pdf_dir;
+  Rgb beta = Le * (cos_e / lp);
+  if (is_black(beta) || !is_finite(beta)) return;
+  PhotonMis mis_state;
+  mis_state.emit(em.hittable(), cos_e, lp);
+
+  nimbus_ray_t ray;
+  org.store(ray.org);
+  dir0.store(ray.dir);
+  ray.tnear = (es.flags & NIMBUS_LIGHT_AREA) ? relative_offset(org) : 0;
+  ray.tfar = kInfinity;
+  ray.mask = ~0u, ray.flags = 0;
+
+  bool had_sharp = false, prev_rough = false;
+  for (uint32_t depth = 1; depth <= kPhotonMaxVertices; ++depth) {
+    nimbus_hit_t hit;
+    svc_.scene->intersect(h, &ctx, &ray, &hit, 1);
+    if (hit.geom_id == NIMBUS_NONE) return;
+    nimbus_interaction_t ix;
+    svc_.scene->interaction(h, &ray, &hit, &ix);
+    const Vec3f wo = -Vec3f::load(ray.dir), ng = Vec3f::load(ix.ng);
+    const float c_in = std::abs(dot(ng, wo));
+    if (!(c_in > 0)) return;
+    mis_state.arrive(c_in);
+    const nimbus_lobe_t lobes = svc_.bsdf->lobes(h, &ix);
+    const bool rough = !is_sharp(svc_.bsdf, h_, ix, lobes);
+    // A photon path that missed every sharp surface ends at its first vertex (see CameraMis: merges
+    // need a sharp first photon vertex). Its only photons would come after a rough-sharp-rough
+    // sequence, which path tracing samples with NEE at that first vertex, as for directions outside
+    // the emission target; tracing them on would cost a large share of the photon vertices.
+    if (rough && depth == 1) return;
+    const bool smooth_only = !has(lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
+    if (!rough) {
+      out.saw_sharp = true;
+      out.sharp_lo = min(out.sharp_lo, Vec3f::load(ix.p));
+      out.sharp_hi = max(out.sharp_hi, Vec3f::load(ix.p));
+      if (pass == 1 && !out.sharp_points_full) {
+        if (out.sharp_points.size() < kSharpPointsPerTask)
+          out.sharp_points.push_back(Vec3f::load(ix.p));
+        else
+          out.sharp_points_full = true;
+      }
+    }
+
+    float nee_term = 0;
+    if (depth == 1 && !smooth_only) nee_term = first_vertex_nee(ix, light, em, es, wo, lp, c_in);
+
+    // Store after a sharp bounce; a photon of depth d completes paths of >= d + 1 segments.
+    const bool stored = rough && had_sharp && depth + 1 <= max_depth_;
+    if (stored) {
+      Photon ph;
+      std::memcpy(ph.p, ix.p, sizeof(ph.p));
+      ph.dir = encode_octahedral(wo);
+      ph.normal = encode_octahedral(ng);
+      beta.store(ph.power);
+      ph.A = mis_state.A;
+      ph.B = mis_state.B;
+      ph.bits = Photon::pack(depth, prev_rough, mis_state.b_valid, light);
+      out.photons.push_back(ph);
+    }
+    if (rough && prev_rough) return;  // two consecutive rough vertices
+    if (depth == kPhotonMaxVertices) return;
+
+    float wo_arr[3], u[3] = {next_uniform(rng), next_uniform(rng), next_uniform(rng)};
+    wo.store(wo_arr);
+    nimbus_bsdf_sample_t bs;
+    svc_.bsdf->sample(h, &ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
+    if (!(bs.pdf > 0)) return;
+    const Vec3f wi = Vec3f::load(bs.wi);
+    const bool delta = has(bs.lobe, NIMBUS_LOBE_SPECULAR);
+    mis_state.scatter(std::abs(dot(ng, wi)), bs.pdf, bs.pdf_rev, rough, stored, delta ? 0.0f : nee_term);
+    const Rgb t = Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(ix.ns))) / bs.pdf);
+    // Russian roulette on this bounce's throughput: photon power stays roughly constant.
+    const float q = std::min(1.0f, max_component(t));
+    if (!(q > 0) || next_uniform(rng) >= q) return;
+    beta *= t / q;
+    if (is_black(beta) || !is_finite(beta)) return;
+    prev_rough = rough;
+    had_sharp = had_sharp || !rough;
+    svc_.scene->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
+  }
+}
+
+// Radiance (area) or intensity (point, spot) that finite light `light` emits from es.org along w.
+Rgb PhotonTracer::emitted(uint32_t light, const Emitter &em, const nimbus_light_emission_t &es,
+                          const Vec3f &w) const {
+  const nimbus_host_t *h = h_;
+  if (em.kind == EmitterKind::Point) return Rgb::load(es.Le);  // isotropic
+  if (em.kind == EmitterKind::Spot) {
+    // The spot's falloff towards w: its intensity / d^2 as seen from a receiver at unit distance.
+    nimbus_interaction_t at{};
+    (Vec3f::load(es.org) + w).store(at.p);
+    const float u[2] = {0.5f, 0.5f};
+    nimbus_light_incident_t li{};
+    svc_.lights->sample_incident(h, light, &at, u, &li);
+    return li.pdf > 0 ? Rgb::load(li.L) * length_squared(Vec3f::load(at.p) - Vec3f::load(es.org)) : Rgb(0);
+  }
+  const nimbus_interaction_t on_light = emission_point(light, es);
+  float wo[3], L[3];
+  w.store(wo);
+  svc_.lights->eval_emitted(h, &on_light, wo, L);
+  return Rgb::load(L);
+}
+
+// E of the first photon vertex: how NEE from it would have sampled the emission point.
+float PhotonTracer::first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
+                                     const nimbus_light_emission_t &es, const Vec3f &wo, float lp,
+                                     float c_in) const {
+  const nimbus_host_t *h = h_;
+  const float pmf = sampler_iface_->pmf(sampler_, &ix, light);
+  if (!(pmf > 0)) return 0;
+  float wo_arr[3];
+  wo.store(wo_arr);
+  if (em.delta_position()) {
+    const float d2 = length_squared(Vec3f::load(es.org) - Vec3f::load(ix.p));  // point and spot
+    return photon_nee_term(true, pmf, d2, lp, c_in);
+  }
+  if (em.infinite()) {
+    const float pdf = em.delta_direction() ? 1.0f : svc_.lights->pdf_incident(h, light, &ix, wo_arr, nullptr);
+    return photon_nee_term(true, pmf * pdf, 1.0f, lp, c_in);
+  }
+  const nimbus_interaction_t on_light = emission_point(light, es);
+  const float pdf = svc_.lights->pdf_incident(h, light, &ix, wo_arr, &on_light);
+  const float cos_z = std::abs(dot(Vec3f::load(es.n), wo));  // wo = -(the photon's direction)
+  // nk * d2 = pmf * pdf * cos_z: pass d2 = 1 with nk already multiplied out.
+  return photon_nee_term(true, pmf * pdf * cos_z, 1.0f, lp, c_in);
+}
+
+}  // namespace nimbus::caustics

@@ -1,0 +1,71 @@
+// Photon paths (solver spec section 4): emission by the solver's light selection towards the emission
+// target, storage at rough vertices after a sharp one, termination after two consecutive rough vertices,
+// and the photon-side MIS state of every stored photon.
+#pragma once
+
+#include <nimbus/nimbus.hpp>
+
+#include <vector>
+
+#include <nimbus/cpp/math.hpp>
+#include <nimbus/cpp/path_services.hpp>
+#include <nimbus/cpp/per_worker.hpp>
+
+#include "emitters.hpp"
+#include "photon_map.hpp"
+
+namespace nimbus::caustics {
+
+// The output of one photon-pass task; a cache line of its own, since tasks on different workers update
+// their chunks on every path.
+struct alignas(sdk::kCacheLineBytes) PhotonChunk {
+  std::vector<Photon> photons;
+  uint64_t paths = 0;  // completed paths
+  bool saw_sharp = false;
+  Vec3f sharp_lo{kInfinity}, sharp_hi{-kInfinity};  // bounds of the sharp vertices met
+  std::vector<Vec3f> sharp_points;                  // the probe's sharp vertices (up to a cap)
+  bool sharp_points_full = false;
+  // Empty for the next pass, keeping the buffers' memory.
+  void reset() {
+    photons.clear(), sharp_points.clear();
+    paths = 0, saw_sharp = false, sharp_points_full = false;
+    sharp_lo = Vec3f(kInfinity), sharp_hi = Vec3f(-kInfinity);
+  }
+};
+
+// Sharp vertices a probe task keeps for the emission target (beyond it: the box's sphere).
+inline constexpr size_t kSharpPointsPerTask = 16384;
+
+// Random-number stream of photon path p of photon pass j: derive(p, j, kStreamPhoton).
+inline constexpr uint64_t kStreamPhoton = 0x70686f746f6e;  // "photon"
+
+// Traces photon paths against the scene, reading only state that is fixed during a photon pass.
+class PhotonTracer {
+ public:
+  PhotonTracer(const nimbus_host_t *host, const sdk::PathServices &svc, const nimbus_plugin_t *sampler,
+               const nimbus_light_sampler_v1_t *sampler_iface, const EmitterSet &emitters, uint32_t max_depth)
+      : h_(host),
+        svc_(svc),
+        sampler_(sampler),
+        sampler_iface_(sampler_iface),
+        emitters_(emitters),
+        max_depth_(max_depth) {}
+
+  // [render-thread] Photon path `path` of the `paths` of pass `pass` (1-based), into `out`.
+  void trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t paths, uint32_t pass,
+             PhotonChunk &out) const;
+
+ private:
+  Rgb emitted(uint32_t light, const Emitter &em, const nimbus_light_emission_t &es, const Vec3f &w) const;
+  float first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
+                         const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const;
+
+  const nimbus_host_t *h_;
+  const sdk::PathServices &svc_;
+  const nimbus_plugin_t *sampler_;
+  const nimbus_light_sampler_v1_t *sampler_iface_;
+  const EmitterSet &emitters_;
+  uint32_t max_depth_;
+};
+
+}  // namespace nimbus::caustics
