@@ -17,6 +17,7 @@ import csv
 import json
 import os
 import statistics
+import subprocess
 import time
 
 from nimbus_tools import run
@@ -58,8 +59,11 @@ def main():
             ref = os.path.join(args.out, f"{name}-reference.exr")
             if not os.path.exists(ref):
                 secs, cmd = render(args.nimbus, scene, args.reference_integrator, args.reference_time, 1000, ref)
+                commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                                        text=True).stdout.strip() or "unknown"
                 with open(ref + ".txt", "w") as f:
-                    f.write(f"command: {' '.join(cmd)}\nwall seconds: {secs:.1f}\n")
+                    f.write(f"command: {' '.join(cmd)}\nwall seconds: {secs:.1f}\n"
+                            f"commit: {commit}; used by error-vs-time.csv\n")
         for integ in integrators:
             for t in times:
                 errs = []

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Per-iteration cost of nimbus.caustics over nimbus.pt at equal iterations, measured side by side.
 
-    bench/overhead.py scenes/caustics/*.yaml [--iterations 32] [--runs 5] [--out docs/overhead.csv]
+    bench/overhead.py scenes/caustics/*.yaml [--iterations 64] [--runs 3] [--out docs/overhead-64.csv]
 
 For each scene and run, renders the scene with pt and with caustics (alternating, same seed per run),
 reads the render's own timing and the solver's statistics from the EXR metadata, and prints per scene the
@@ -26,9 +26,9 @@ def render(nimbus, scene, integrator, iterations, seed, out):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scenes", nargs="+")
-    ap.add_argument("--iterations", type=int, default=32)
-    ap.add_argument("--runs", type=int, default=5)
-    ap.add_argument("--out", default="docs/overhead.csv")
+    ap.add_argument("--iterations", type=int, default=64)
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--out", default="docs/overhead-64.csv")
     ap.add_argument("--nimbus", default="build/bin/nimbus")
     args = ap.parse_args()
 
