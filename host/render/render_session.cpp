@@ -12,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "abi/host_services.hpp"
+#include "core/checksum.hpp"
 #include "film/checkpoint.hpp"
 #include "render/plugin_interface.hpp"
 #include "render/plugin_registry.hpp"
