@@ -13,11 +13,12 @@
 
 #include <nimbus/cpp/sampling.hpp>
 #include "abi/host_services.hpp"
+#include "abi/run_state.hpp"
 #include "core/hash.hpp"
 #include "loader/plugin_registry.hpp"
-#include "render/render_context.hpp"
 #include "render/render_session.hpp"
 #include "scene/scene_parser.hpp"
+#include "world/world.hpp"
 
 namespace nimbus {
 namespace {
@@ -63,10 +64,11 @@ BENCHMARK(BM_PathTracerDefaultScene)->UseManualTime()->Unit(benchmark::kMillisec
 void BM_EmbreeClosestHitDefaultScene(benchmark::State &state) {
   auto desc = parse_scene_file(kScene);
   if (!desc) return state.SkipWithError(desc.error().message.c_str());
-  auto ctx = RenderContext::build(desc.value(), 0);
-  if (!ctx) return state.SkipWithError(ctx.error().message.c_str());
-  RTCScene scene = (*ctx)->geometry->rtc_scene();
-  const Vec3f lo = (*ctx)->geometry->bounds_min(), hi = (*ctx)->geometry->bounds_max();
+  auto world = World::build(desc.value());
+  if (!world) return state.SkipWithError(world.error().message.c_str());
+  RTCScene scene = (*world)->geometry->rtc_scene();
+  const Vec3f lo = (*world)->geometry->bounds_min(), hi = (*world)->geometry->bounds_max();
+  RunState run(desc->render.width, desc->render.height, 0, desc->render.seed);  // all cores, as nimbus.pt
   constexpr size_t kRays = 1 << 20;
   std::vector<RTCRayHit> batch(kRays);
   std::mt19937 rng(1);
@@ -80,7 +82,7 @@ void BM_EmbreeClosestHitDefaultScene(benchmark::State &state) {
   uint64_t hits = 0;
   for (auto _ : state) {
     std::atomic<uint64_t> h{0};
-    (*ctx)->arena->execute([&] {
+    run.arena->execute([&] {
       tbb::parallel_for(tbb::blocked_range<size_t>(0, kRays, 4096), [&](const tbb::blocked_range<size_t> &r) {
         RTCIntersectContext ic;
         rtcInitIntersectContext(&ic);

@@ -20,10 +20,10 @@ TexturedMaterials::SurfacePoint surface_point(const nimbus_interaction_t *ix) {
 class Local {
  public:
   Local(const nimbus_host_t *host, const nimbus_interaction_t *ix) : ns_(Vec3f::load(ix->ns)) {
-    const RenderContext &ctx = context_of(host);
-    const TexturedMaterials *textured = ctx.textures.get();
+    const World &world = world_of(host);
+    const TexturedMaterials *textured = world.textures.get();
     if (!textured || !textured->textured(ix->material)) {
-      bsdf_ = &ctx.bsdfs[ix->material];
+      bsdf_ = &world.bsdfs[ix->material];
     } else {
       const TexturedMaterials::Shading &s = own_.emplace(textured->shade(ix->material, surface_point(ix)));
       bsdf_ = &s.bsdf;
@@ -70,11 +70,11 @@ class Local {
 // makes those vary over the surface.
 template <class F>
 auto at_point(const nimbus_host_t *host, const nimbus_interaction_t *ix, F &&query) {
-  const RenderContext &ctx = context_of(host);
-  const TexturedMaterials *textured = ctx.textures.get();
+  const World &world = world_of(host);
+  const TexturedMaterials *textured = world.textures.get();
   if (textured && textured->varies_lobes(ix->material))
     return query(textured->shade(ix->material, surface_point(ix)).bsdf);
-  return query(ctx.bsdfs[ix->material]);
+  return query(world.bsdfs[ix->material]);
 }
 
 TransportMode mode_of(nimbus_transport_mode_t m) {

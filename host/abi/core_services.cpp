@@ -11,27 +11,27 @@ namespace nimbus {
 namespace {
 
 void derive(const nimbus_host_t *host, uint64_t key, uint64_t iteration, uint64_t stream, nimbus_rng_t *out) {
-  *out = derive_rng(context_of(host).seed, key, iteration, stream);
+  *out = derive_rng(run_of(host).seed, key, iteration, stream);
 }
 
 void report(const nimbus_host_t *host, uint64_t done, uint64_t total, const char *phase) {
-  RenderContext &ctx = context_of(host);
-  std::lock_guard lock(ctx.phase_mutex);
-  ctx.phase = phase ? phase : "";
-  ctx.phase_done = done;
-  ctx.phase_total = total;
+  RunState &run = run_of(host);
+  std::lock_guard lock(run.phase_mutex);
+  run.phase = phase ? phase : "";
+  run.phase_done = done;
+  run.phase_total = total;
 }
 
 int32_t cancelled(const nimbus_host_t *host) {
-  const RenderContext &ctx = context_of(host);
-  return ctx.cancel && ctx.cancel->load(std::memory_order_relaxed) ? 1 : 0;
+  const RunState &run = run_of(host);
+  return run.cancel && run.cancel->load(std::memory_order_relaxed) ? 1 : 0;
 }
 
 void stat_add(const nimbus_host_t *host, const char *counter, double value) {
   if (!counter) return;
-  RenderContext &ctx = context_of(host);
-  std::lock_guard lock(ctx.stats_mutex);
-  ctx.stats[counter] += value;
+  RunState &run = run_of(host);
+  std::lock_guard lock(run.stats_mutex);
+  run.stats[counter] += value;
 }
 
 // Worker index of the calling thread inside the render arena (0 for the main thread outside it).
@@ -43,13 +43,13 @@ uint32_t worker_index() {
 nimbus_status_t parallel_for(const nimbus_host_t *host, uint64_t count, uint64_t grain, nimbus_task_fn fn,
                              void *user) {
   if (!fn) return NIMBUS_E_INVALID_ARG;
-  RenderContext &ctx = context_of(host);
+  RunState &run = run_of(host);
   if (grain == 0) grain = 1;
   const uint64_t chunks = (count + grain - 1) / grain;
   // Fixed chunks (not TBB's adaptive ranges) so boundaries never depend on the thread count.
-  ctx.arena->execute([&] {
+  run.arena->execute([&] {
     tbb::parallel_for(uint64_t(0), chunks, [&](uint64_t c) {
-      nimbus_thread_ctx_t tc{sizeof(nimbus_thread_ctx_t), worker_index(), ctx.worker_count, 0, nullptr, 0};
+      nimbus_thread_ctx_t tc{sizeof(nimbus_thread_ctx_t), worker_index(), run.worker_count, 0, nullptr, 0};
       const uint64_t begin = c * grain, end = std::min(count, begin + grain);
       fn(&tc, begin, end, user);
     });
@@ -57,7 +57,7 @@ nimbus_status_t parallel_for(const nimbus_host_t *host, uint64_t count, uint64_t
   return NIMBUS_OK;
 }
 
-uint32_t tasks_worker_count(const nimbus_host_t *host) { return context_of(host).worker_count; }
+uint32_t tasks_worker_count(const nimbus_host_t *host) { return run_of(host).worker_count; }
 
 void *mem_alloc(const nimbus_host_t *, size_t bytes, size_t alignment) {
   if (alignment == 0 || (alignment & (alignment - 1)) != 0 || alignment > 4096) return nullptr;
@@ -70,7 +70,7 @@ void *mem_alloc(const nimbus_host_t *, size_t bytes, size_t alignment) {
 void mem_free(const nimbus_host_t *, void *block) { std::free(block); }
 
 int32_t is_main_thread(const nimbus_host_t *host) {
-  return std::this_thread::get_id() == context_of(host).main_thread ? 1 : 0;
+  return std::this_thread::get_id() == run_of(host).main_thread ? 1 : 0;
 }
 
 int32_t is_render_thread(const nimbus_host_t *) {

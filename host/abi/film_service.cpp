@@ -8,53 +8,53 @@ namespace {
 nimbus_element_t register_element(const nimbus_host_t *host, const char *name, uint32_t channels,
                                   uint32_t flags) {
   if (!name) return NIMBUS_ELEMENT_INVALID;
-  return context_of(host).film->register_element(name, channels, flags);
+  return run_of(host).film.register_element(name, channels, flags);
 }
 
 int32_t is_active(const nimbus_host_t *host, nimbus_element_t el) {
-  return context_of(host).film->is_active(el) ? 1 : 0;
+  return run_of(host).film.is_active(el) ? 1 : 0;
 }
 
 // Odd iterations' beauty also feeds the error estimate's half film (only with --target-error).
-Film *half_film(const RenderContext &ctx, nimbus_element_t el) {
-  return el == NIMBUS_ELEMENT_BEAUTY && ctx.error_estimate && ErrorEstimate::is_odd(ctx.iteration)
-             ? &ctx.error_estimate->half()
+Film *half_film(const RunState &run, nimbus_element_t el) {
+  return el == NIMBUS_ELEMENT_BEAUTY && run.error_estimate && ErrorEstimate::is_odd(run.iteration)
+             ? &run.error_estimate->half()
              : nullptr;
 }
 
 void accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *, nimbus_element_t el, uint32_t x,
                 uint32_t y, const float *value) {
-  const RenderContext &ctx = context_of(host);
-  ctx.film->accumulate(el, x, y, value);
-  if (Film *half = half_film(ctx, el)) half->accumulate(el, x, y, value);
+  RunState &run = run_of(host);
+  run.film.accumulate(el, x, y, value);
+  if (Film *half = half_film(run, el)) half->accumulate(el, x, y, value);
 }
 
 void splat(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, nimbus_element_t el, float fx, float fy,
            const float *value) {
-  const RenderContext &ctx = context_of(host);
-  ctx.film->splat(tc->worker_index, el, fx, fy, value);
-  if (Film *half = half_film(ctx, el)) half->splat(tc->worker_index, el, fx, fy, value);
+  RunState &run = run_of(host);
+  run.film.splat(tc->worker_index, el, fx, fy, value);
+  if (Film *half = half_film(run, el)) half->splat(tc->worker_index, el, fx, fy, value);
 }
 
 int32_t lightmix_is_active(const nimbus_host_t *host) {
-  return context_of(host).lightmix_elements.empty() ? 0 : 1;
+  return run_of(host).lightmix_elements.empty() ? 0 : 1;
 }
 
 uint32_t lightmix_group_count(const nimbus_host_t *host) {
-  return uint32_t(context_of(host).lights.group_names().size());
+  return uint32_t(world_of(host).lights.group_names().size());
 }
 
 void lightmix_accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *, uint32_t group, uint32_t x,
                          uint32_t y, const float value[3]) {
-  const RenderContext &ctx = context_of(host);
-  if (group < ctx.lightmix_elements.size()) ctx.film->accumulate(ctx.lightmix_elements[group], x, y, value);
+  RunState &run = run_of(host);
+  if (group < run.lightmix_elements.size()) run.film.accumulate(run.lightmix_elements[group], x, y, value);
 }
 
 void lightmix_splat(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, uint32_t group, float fx,
                     float fy, const float value[3]) {
-  const RenderContext &ctx = context_of(host);
-  if (group < ctx.lightmix_elements.size())
-    ctx.film->splat(tc->worker_index, ctx.lightmix_elements[group], fx, fy, value);
+  RunState &run = run_of(host);
+  if (group < run.lightmix_elements.size())
+    run.film.splat(tc->worker_index, run.lightmix_elements[group], fx, fy, value);
 }
 
 }  // namespace

@@ -15,11 +15,11 @@ const void *get_service(const nimbus_host_t *, const char *id, uint32_t rev) {
 
 void log_message(const nimbus_host_t *host, nimbus_log_level_t level, const char *plugin_id,
                  const char *msg) {
-  RenderContext *ctx = static_cast<HostServices *>(host->host_data)->context();
+  RunState *run = static_cast<HostServices *>(host->host_data)->run();
   const std::string id = plugin_id ? plugin_id : "";
   const std::string text = msg ? msg : "";
-  if (ctx && ctx->log) {
-    ctx->log(level, id, text);
+  if (run && run->log) {
+    run->log(level, id, text);
   } else if (level >= NIMBUS_LOG_WARNING) {
     std::fprintf(stderr, "nimbus: %s%s%s\n", id.c_str(), id.empty() ? "" : ": ", text.c_str());
   }
@@ -27,7 +27,7 @@ void log_message(const nimbus_host_t *host, nimbus_log_level_t level, const char
 
 }  // namespace
 
-HostServices::HostServices(RenderContext *ctx) : ctx_(ctx) {
+void HostServices::init() {
   host_.struct_size = sizeof(nimbus_host_t);
   host_.abi = NIMBUS_ABI_VERSION_INIT;
   host_.host_data = this;

@@ -5,29 +5,27 @@
 namespace nimbus {
 namespace {
 
-void count_rays(RenderContext &ctx, const nimbus_thread_ctx_t *tc, uint32_t n) {
-  if (tc && tc->worker_index < ctx.ray_counters.size()) ctx.ray_counters[tc->worker_index].rays += n;
+void count_rays(RunState &run, const nimbus_thread_ctx_t *tc, uint32_t n) {
+  if (tc && tc->worker_index < run.ray_counters.size()) run.ray_counters[tc->worker_index].rays += n;
 }
 
 void intersect(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_ray_t *rays,
                nimbus_hit_t *hits, uint32_t n) {
-  RenderContext &ctx = context_of(host);
-  count_rays(ctx, tc, n);
-  const GeometryScene &g = *ctx.geometry;
+  count_rays(run_of(host), tc, n);
+  const GeometryScene &g = *world_of(host).geometry;
   for (uint32_t i = 0; i < n; ++i) g.intersect(rays[i], hits[i]);
 }
 
 void occluded(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_ray_t *rays,
               uint8_t *blocked, uint32_t n) {
-  RenderContext &ctx = context_of(host);
-  count_rays(ctx, tc, n);
-  const GeometryScene &g = *ctx.geometry;
+  count_rays(run_of(host), tc, n);
+  const GeometryScene &g = *world_of(host).geometry;
   for (uint32_t i = 0; i < n; ++i) blocked[i] = g.occluded(rays[i]) ? 1 : 0;
 }
 
 void interaction(const nimbus_host_t *host, const nimbus_ray_t *ray, const nimbus_hit_t *hit,
                  nimbus_interaction_t *out) {
-  context_of(host).geometry->interaction(*ray, *hit, *out);
+  world_of(host).geometry->interaction(*ray, *hit, *out);
 }
 
 void spawn_ray(const nimbus_host_t *, const nimbus_interaction_t *ix, const float dir[3], float tfar,
@@ -59,18 +57,18 @@ void spawn_ray_to(const nimbus_host_t *, const nimbus_interaction_t *ix, const f
 }
 
 float bounding_sphere(const nimbus_host_t *host, float center[3]) {
-  const GeometryScene &g = *context_of(host).geometry;
+  const GeometryScene &g = *world_of(host).geometry;
   g.sphere_center().store(center);
   return g.sphere_radius();
 }
 
 float generate_ray(const nimbus_host_t *host, const nimbus_camera_sample_t *sample, nimbus_ray_t *ray) {
-  context_of(host).camera.generate_ray(*sample, *ray);
+  world_of(host).camera.generate_ray(*sample, *ray);
   return 1.0f;
 }
 
 float resolution(const nimbus_host_t *host, uint32_t *width, uint32_t *height) {
-  const Camera &c = context_of(host).camera;
+  const Camera &c = world_of(host).camera;
   if (width) *width = c.width();
   if (height) *height = c.height();
   return c.pixel_angle();
@@ -79,14 +77,14 @@ float resolution(const nimbus_host_t *host, uint32_t *width, uint32_t *height) {
 float connect(const nimbus_host_t *host, const float p[3], const float lens_u[2], float raster[2],
               float lens_point[3]) {
   Vec3f lp;
-  const float w = context_of(host).camera.connect(Vec3f::load(p), lens_u, raster, lp);
+  const float w = world_of(host).camera.connect(Vec3f::load(p), lens_u, raster, lp);
   lp.store(lens_point);
   return w;
 }
 
 float sample_film(const nimbus_host_t *host, uint32_t x, uint32_t y, const float u[2], float film[2]) {
   float weight = 0;
-  const Vec2f d = context_of(host).filter.sample(u[0], u[1], weight);
+  const Vec2f d = world_of(host).filter.sample(u[0], u[1], weight);
   film[0] = float(x) + 0.5f + d.x;
   film[1] = float(y) + 0.5f + d.y;
   return weight;

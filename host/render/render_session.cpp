@@ -12,12 +12,12 @@
 #include <tbb/parallel_for.h>
 
 #include "abi/host_services.hpp"
+#include "abi/run_state.hpp"
 #include "core/checksum.hpp"
 #include "film/checkpoint.hpp"
 #include "loader/plugin_interface.hpp"
 #include "loader/plugin_registry.hpp"
 #include "loader/plugin_status.hpp"
-#include "render/render_context.hpp"
 
 namespace nimbus {
 namespace {
@@ -91,24 +91,25 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
     desc_copy.render.seed = *options.seed;
     desc = &desc_copy;
   }
-  auto built = RenderContext::build(*desc, options.threads);
+  auto built = World::build(*desc);
   if (!built) return built.error();
-  RenderContext &ctx = *built.value();
-  ctx.cancel = &cancel;
-  ctx.log = [&](int level, const std::string &id, const std::string &msg) {
+  const World &world = *built.value();
+  RunState run(desc->render.width, desc->render.height, options.threads, desc->render.seed);
+  run.cancel = &cancel;
+  run.log = [&](int level, const std::string &id, const std::string &msg) {
     if (message) message(level, id.empty() ? msg : id + ": " + msg);
   };
-  HostServices services(&ctx);
+  HostServices services(&world, &run);
   const nimbus_host_t *host = services.host();
 
   // Plugins: the integrator the scene names and the light sampler.
   auto ip = registry.instantiate(desc->render.integrator, NIMBUS_KIND_INTEGRATOR, host);
   if (!ip) return Error{desc->path + ": integrator: " + ip.error().message};
   PluginHandle integrator = std::move(ip).value();
-  const std::string sampler_id = !options.light_sampler.empty()             ? options.light_sampler
-                                 : !desc->render.light_sampler.empty()      ? desc->render.light_sampler
-                                 : ctx.lights.count() > kTreeLightThreshold ? "nimbus.lights.tree"
-                                                                            : "nimbus.lights.power";
+  const std::string sampler_id = !options.light_sampler.empty()               ? options.light_sampler
+                                 : !desc->render.light_sampler.empty()        ? desc->render.light_sampler
+                                 : world.lights.count() > kTreeLightThreshold ? "nimbus.lights.tree"
+                                                                              : "nimbus.lights.power";
   auto sp = registry.instantiate(sampler_id, NIMBUS_KIND_LIGHT_SAMPLER, host);
   if (!sp) return Error{"light sampler: " + sp.error().message};
   PluginHandle sampler = std::move(sp).value();
@@ -125,10 +126,10 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   // allocates exactly what was requested.
   nimbus_scene_info_t scene_info{};
   scene_info.header = {sizeof(scene_info), NIMBUS_S_TYPE_SCENE_INFO, nullptr};
-  scene_info.light_count = ctx.lights.count();
-  scene_info.worker_count = ctx.worker_count;
-  ctx.geometry->sphere_center().store(scene_info.scene_center);
-  scene_info.scene_radius = ctx.geometry->sphere_radius();
+  scene_info.light_count = world.lights.count();
+  scene_info.worker_count = run.worker_count;
+  world.geometry->sphere_center().store(scene_info.scene_center);
+  scene_info.scene_radius = world.geometry->sphere_radius();
   if (nimbus_status_t s = ls.prepare(sampler.get(), &scene_info); s != NIMBUS_OK)
     return Error{"light sampler '" + sampler.id() + "' failed to prepare: " + status_text(s)};
 
@@ -147,7 +148,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   if (nimbus_status_t s = it.prepare(integrator.get(), &setup); s != NIMBUS_OK)
     return Error{"integrator '" + integrator_id + "' failed to prepare: " + status_text(s)};
 
-  Film &film = *ctx.film;
+  Film &film = run.film;
   bool lightmix = false;
   for (const auto *list : {&desc->render.elements, &options.elements})
     for (const std::string &e : *list) {
@@ -161,15 +162,15 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
                  "' does not produce LightMix layers (no \"lightmix\" feature)"};
   if (lightmix) {
     // One layer per light group, "lightmix.<group>"; the integrator's contributions per light sum to beauty.
-    for (const std::string &g : lightmix_layer_names(ctx.lights.group_names())) {
+    for (const std::string &g : lightmix_layer_names(world.lights.group_names())) {
       const int32_t id = film.register_element(g, 3, NIMBUS_ELEMENT_SPLAT);
       if (id < 0) return Error{"cannot create LightMix layer '" + g + "'"};
       film.request(g);
-      ctx.lightmix_elements.push_back(id);
+      run.lightmix_elements.push_back(id);
     }
   }
   if (Status s = film.allocate(); !s) return s.error();
-  film.set_worker_count(ctx.worker_count);
+  film.set_worker_count(run.worker_count);
 
   // Checkpoint: restore the sums before the first iteration, or warn before replacing someone's work.
   const std::string checkpoint_path =
@@ -209,14 +210,14 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       return Error{
           "an error target (--target-error or render.target_error) cannot resume a checkpoint "
           "(the odd/even halves were not saved)"};
-    ctx.error_estimate =
-        std::make_unique<ErrorEstimate>(desc->render.width, desc->render.height, ctx.worker_count);
+    run.error_estimate =
+        std::make_unique<ErrorEstimate>(desc->render.width, desc->render.height, run.worker_count);
   }
   double estimated_error = -1;
 
   nimbus_render_info_t info{};
   info.header = {sizeof(info), NIMBUS_S_TYPE_RENDER_INFO, nullptr};
-  info.worker_count = ctx.worker_count;
+  info.worker_count = run.worker_count;
   info.first_iteration = film.iterations() + 1;
   info.planned_iterations = iterations;
   if (nimbus_status_t s = it.begin_render(integrator.get(), &info); s != NIMBUS_OK)
@@ -265,17 +266,17 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       last_save = Clock::now();
     }
     const uint64_t i = done + 1;
-    ctx.iteration = i;
+    run.iteration = i;
     if (nimbus_status_t s = it.begin_iteration(integrator.get(), i); s != NIMBUS_OK) {
       failure = s, failure_hook = "begin_iteration";
       break;
     }
     std::atomic<nimbus_status_t> tile_status{NIMBUS_OK};
-    ctx.arena->execute([&] {
+    run.arena->execute([&] {
       tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
         const int wi = tbb::this_task_arena::current_thread_index();
         nimbus_thread_ctx_t tc{
-            sizeof(nimbus_thread_ctx_t), uint32_t(wi < 0 ? 0 : wi), ctx.worker_count, 0, nullptr, 0};
+            sizeof(nimbus_thread_ctx_t), uint32_t(wi < 0 ? 0 : wi), run.worker_count, 0, nullptr, 0};
         nimbus_tile_t tile = tiles[t];
         tile.iteration = i;
         if (nimbus_status_t s = it.render_tile(integrator.get(), &tc, &tile); s != NIMBUS_OK) {
@@ -298,10 +299,10 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
     }
     film.end_iteration();
     done = i;
-    if (ctx.error_estimate) {
-      ctx.error_estimate->end_iteration(i);
+    if (run.error_estimate) {
+      run.error_estimate->end_iteration(i);
       if (i % 2 == 0) {
-        estimated_error = ctx.error_estimate->relmse(film);
+        estimated_error = run.error_estimate->relmse(film);
         if (estimated_error < target_error) reached_target = true;
       }
     }
@@ -313,8 +314,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       p.time_budget = budget;
       p.samples_per_second =
           double(region_pixels) * (done - resumed_from) / std::max(p.elapsed_seconds, 1e-9);
-      std::lock_guard lock(ctx.phase_mutex);
-      p.phase = ctx.phase;
+      std::lock_guard lock(run.phase_mutex);
+      p.phase = run.phase;
       progress(p);
     }
   }
@@ -333,7 +334,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   result.seconds = seconds;
   result.cancelled = was_cancelled;
   result.nonfinite_samples = film.nonfinite_count();
-  result.rays = ctx.rays_traced();
+  result.rays = run.rays_traced();
   result.resumed_from = options.resume ? resumed_from : 0;
   result.checkpoint_path = saved_path;
   result.exr_path = options.output_exr;
@@ -352,17 +353,17 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   // "seconds" is the render time of all the iterations in the image, over every resumed session.
   std::vector<std::pair<std::string, double>> nmeta = {{"iterations", double(done)},
                                                        {"seconds", previous_seconds + seconds},
-                                                       {"threads", double(ctx.worker_count)},
+                                                       {"threads", double(run.worker_count)},
                                                        {"nonfinite_samples", double(film.nonfinite_count())},
                                                        {"rays", double(result.rays)}};
-  if (ctx.error_estimate) {
+  if (run.error_estimate) {
     nmeta.push_back({"target_error", target_error});
     nmeta.push_back({"estimated_relmse", estimated_error});
   }
   if (options.resume) nmeta.push_back({"resumed_from", double(resumed_from)});
   {
-    std::lock_guard lock(ctx.stats_mutex);
-    for (const auto &[k, v] : ctx.stats) nmeta.push_back({"stat:" + k, v});
+    std::lock_guard lock(run.stats_mutex);
+    for (const auto &[k, v] : run.stats) nmeta.push_back({"stat:" + k, v});
   }
   if (Status s = film.write_exr(result.exr_path, smeta, nmeta); !s) return s.error();
   const std::string ocio = options.ocio_config.empty() ? default_ocio_config_path() : options.ocio_config;

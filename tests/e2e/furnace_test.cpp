@@ -32,7 +32,7 @@ std::vector<Sees> coverage(const SceneDesc &scene) {
       << "the classification assumes the camera aims at the sphere";
   const double disc = sphere.radius / std::sqrt(double(dist) * dist - double(sphere.radius) * sphere.radius);
   const uint32_t w = scene.render.width, h = scene.render.height;
-  // The camera model of host/render/camera.hpp: horizontal fov across the width, square pixels.
+  // The camera model of host/world/camera.hpp: horizontal fov across the width, square pixels.
   const double tan_half = std::tan(cam.fov_degrees * M_PI / 360), aspect = double(h) / w;
   const auto sx = [&](double fx) { return (2 * fx / w - 1) * tan_half; };
   const auto sy = [&](double fy) { return (1 - 2 * fy / h) * tan_half * aspect; };

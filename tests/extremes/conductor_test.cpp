@@ -73,7 +73,7 @@ class AlbedoTable {
 };
 
 // Pixels whose whole footprint sees the unit sphere, their expected value - E(mu) averaged over a 4x4
-// grid of camera rays per pixel (the camera model of host/render/camera.hpp: horizontal fov, pixel
+// grid of camera rays per pixel (the camera model of host/world/camera.hpp: horizontal fov, pixel
 // centres at +0.5; here at (0, -3, 0) looking along +y with +z up) - and the standard error of the
 // region's mean expected value that the table's own noise causes.
 struct SphereExpectation {

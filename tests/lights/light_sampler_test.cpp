@@ -7,7 +7,6 @@
 #include <random>
 
 #include "abi/host_services.hpp"
-#include "render/render_context.hpp"
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
@@ -59,10 +58,11 @@ class SamplerHarness {
     auto desc = parse_scene_string(yaml, "many.yaml");
     EXPECT_TRUE(desc.ok()) << (desc.ok() ? "" : desc.error().message);
     desc_ = std::move(desc.value());
-    auto ctx = RenderContext::build(desc_, 1);
-    EXPECT_TRUE(ctx.ok());
-    ctx_ = std::move(ctx.value());
-    services_ = std::make_unique<HostServices>(ctx_.get());
+    auto world = World::build(desc_);
+    EXPECT_TRUE(world.ok());
+    world_ = std::move(world.value());
+    run_ = std::make_unique<RunState>(desc_.render.width, desc_.render.height, 1, desc_.render.seed);
+    services_ = std::make_unique<HostServices>(world_.get(), run_.get());
     registry_.discover({std::string(NIMBUS_BINARY_DIR) + "/lib/nimbus/plugins"}, services_->host());
     auto p = registry_.create(sampler, NIMBUS_KIND_LIGHT_SAMPLER, services_->host());
     EXPECT_TRUE(p.ok()) << (p.ok() ? "" : p.error().message);
@@ -75,7 +75,7 @@ class SamplerHarness {
   }
   ~SamplerHarness() { registry_.destroy(plugin_); }
 
-  uint32_t light_count() const { return ctx_->lights.count(); }
+  uint32_t light_count() const { return world_->lights.count(); }
   float pmf(const nimbus_interaction_t &ix, uint32_t l) const { return iface_->pmf(plugin_, &ix, l); }
   uint32_t pick(const nimbus_interaction_t &ix, float u, float *pmf) const {
     return iface_->pick(plugin_, &ix, u, pmf);
@@ -83,7 +83,8 @@ class SamplerHarness {
 
  private:
   SceneDesc desc_;
-  std::unique_ptr<RenderContext> ctx_;
+  std::unique_ptr<World> world_;
+  std::unique_ptr<RunState> run_;
   std::unique_ptr<HostServices> services_;
   PluginRegistry registry_;
   const nimbus_plugin_t *plugin_ = nullptr;

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "render/pixel_filter.hpp"
+#include "world/pixel_filter.hpp"
 
 namespace nimbus {
 namespace {

@@ -9,9 +9,9 @@
 
 #include "e2e/subprocess.hpp"
 #include "materials/textured_materials.hpp"
-#include "render/render_context.hpp"
 #include "scene/scene_parser.hpp"
 #include "texture_fixtures.hpp"
+#include "world/world.hpp"
 
 namespace nimbus {
 namespace {
@@ -105,9 +105,9 @@ TEST(TextureErrors, SceneBuildNamesTheResolvedPathAndTheSceneLocation) {
   auto desc = parse_scene_file(scene);
   ASSERT_TRUE(desc.ok()) << desc.error().message;
   EXPECT_EQ(desc.value().materials[0].albedo_texture.path, dir.file("maps/missing.png"));
-  auto ctx = RenderContext::build(desc.value(), 1);
-  ASSERT_FALSE(ctx.ok());
-  EXPECT_EQ(ctx.error().message,
+  auto world = World::build(desc.value());
+  ASSERT_FALSE(world.ok());
+  EXPECT_EQ(world.error().message,
             scene + ":3:42: error: materials.m.albedo.texture: " + dir.file("maps/missing.png") +
                 ": cannot read texture: No such file or directory");
 }

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "render/render_context.hpp"
 #include "support/render_support.hpp"
 #include "texture_fixtures.hpp"
+#include "world/world.hpp"
 
 namespace nimbus {
 namespace {
@@ -173,9 +173,9 @@ TEST(TexturedRender, LightTracerAgreesOnNormalMappedShading) {
 TEST(TexturedRender, UntexturedSceneOpensNoTextureSystem) {
   auto desc = parse_scene_string(lit_quad("{ type: diffuse, albedo: 0.8 }"), "plain.yaml");
   ASSERT_TRUE(desc.ok()) << desc.error().message;
-  auto ctx = RenderContext::build(desc.value(), 1);
-  ASSERT_TRUE(ctx.ok()) << ctx.error().message;
-  EXPECT_EQ(ctx.value()->textures, nullptr);
+  auto world = World::build(desc.value());
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  EXPECT_EQ(world.value()->textures, nullptr);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "render/pixel_filter.hpp"
+#include "world/pixel_filter.hpp"
 
 #include <vector>
 

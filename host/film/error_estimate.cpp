@@ -1,4 +1,4 @@
-#include "render/error_estimate.hpp"
+#include "film/error_estimate.hpp"
 
 #include <limits>
 

@@ -1,5 +1,7 @@
-// Everything a render reads: the built scene, the film and the loop's shared flags. The host's C
-// services (abi/) forward to it; it knows nothing of plugins.
+// What changes while a render runs: the film and error estimate the film service writes, the iteration
+// being rendered, the worker arena, ray counters, and what plugins report (log lines, statistics, the
+// phase). The render session makes it and drives the loop; the host services (abi/) read and write it.
+// The world the render reads is apart (world/world.hpp) and never changes.
 #pragma once
 
 #include <atomic>
@@ -13,34 +15,26 @@
 
 #include <tbb/task_arena.h>
 
-#include "core/expected.hpp"
+#include <nimbus/cpp/per_worker.hpp>
+
+#include "film/error_estimate.hpp"
 #include "film/film.hpp"
-#include "geometry/geometry_scene.hpp"
-#include "lights/light_set.hpp"
-#include "materials/bsdf.hpp"
-#include "materials/textured_materials.hpp"
-#include "render/camera.hpp"
-#include "render/error_estimate.hpp"
-#include "render/pixel_filter.hpp"
-#include "scene/scene_desc.hpp"
 
 namespace nimbus {
 
 using LogFn = std::function<void(int level, const std::string &plugin_id, const std::string &msg)>;
 
-struct RenderContext {
-  const SceneDesc *desc = nullptr;
-  std::unique_ptr<GeometryScene> geometry;
-  LightSet lights;
-  std::vector<Bsdf> bsdfs;                      // one per scene material
-  std::unique_ptr<TexturedMaterials> textures;  // null unless a material reads a texture
-  Camera camera;
-  PixelFilter filter;
-  std::unique_ptr<Film> film;
+struct RunState {
+  // A width x height film, and an arena of `threads` workers (0 = all cores).
+  RunState(uint32_t width, uint32_t height, uint32_t threads, uint64_t seed);
+  RunState(const RunState &) = delete;
+  RunState &operator=(const RunState &) = delete;
+
+  Film film;
   // Only with a target error: odd-iteration beauty, for the reference-free error estimate.
   std::unique_ptr<ErrorEstimate> error_estimate;
   uint64_t iteration = 0;  // the iteration being rendered (1-based), set before its tiles start
-  uint64_t seed = 1;
+  uint64_t seed = 1;       // of the random streams the rng service derives
   // Film element of each LightMix group (empty when LightMix was not requested).
   std::vector<int32_t> lightmix_elements;
 
@@ -50,8 +44,8 @@ struct RenderContext {
   std::atomic<bool> *cancel = nullptr;  // set by Ctrl-C or the time budget; owned by the caller
   LogFn log;
 
-  // Rays traced, per worker (cache-line padded so counting costs no contention); summed after the render.
-  struct alignas(64) RayCounter {
+  // Rays traced, per worker (a cache line each, so counting costs no contention); summed after the render.
+  struct alignas(sdk::kCacheLineBytes) RayCounter {
     uint64_t rays = 0;
   };
   std::vector<RayCounter> ray_counters;
@@ -68,9 +62,6 @@ struct RenderContext {
   std::mutex phase_mutex;
   std::string phase;
   uint64_t phase_done = 0, phase_total = 0;
-
-  // Builds geometry, lights, materials and camera for `desc` (which must outlive the context).
-  static Expected<std::unique_ptr<RenderContext>> build(const SceneDesc &desc, uint32_t threads);
 };
 
 }  // namespace nimbus

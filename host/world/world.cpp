@@ -1,0 +1,31 @@
+#include "world/world.hpp"
+
+namespace nimbus {
+
+Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc) {
+  auto world = std::make_unique<World>();
+  auto geo = GeometryScene::build(desc);
+  if (!geo) return geo.error();
+  world->geometry = std::move(geo.value());
+  auto lights = LightSet::build(desc, *world->geometry);
+  if (!lights) return lights.error();
+  world->lights = std::move(lights.value());
+  for (const MaterialDesc &m : desc.materials) world->bsdfs.push_back(make_bsdf(m));
+  auto textures = TexturedMaterials::build(desc.materials);
+  if (!textures) return textures.error();
+  world->textures = std::move(textures.value());
+  world->camera = Camera(desc.camera, desc.render.width, desc.render.height);
+  const std::string &f = desc.render.filter;
+  if (f == "box") {
+    world->filter = PixelFilter(FilterType::Box);
+  } else if (f == "gaussian") {
+    world->filter = PixelFilter(FilterType::Gaussian);
+  } else if (f == "blackman-harris") {
+    world->filter = PixelFilter(FilterType::BlackmanHarris);
+  } else {
+    return Error{desc.path + ": unknown pixel filter '" + f + "' (known: box, gaussian, blackman-harris)"};
+  }
+  return world;
+}
+
+}  // namespace nimbus

@@ -1,0 +1,32 @@
+// The built, immutable world a render reads: geometry, lights, materials, camera and pixel filter, made
+// once from a SceneDesc. Nothing in it changes while a render runs (that is abi/run_state.hpp); the host
+// services (abi/) hand it to plugins, and it knows nothing of plugins or the film.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/expected.hpp"
+#include "geometry/geometry_scene.hpp"
+#include "lights/light_set.hpp"
+#include "materials/bsdf.hpp"
+#include "materials/textured_materials.hpp"
+#include "scene/scene_desc.hpp"
+#include "world/camera.hpp"
+#include "world/pixel_filter.hpp"
+
+namespace nimbus {
+
+struct World {
+  std::unique_ptr<GeometryScene> geometry;
+  LightSet lights;
+  std::vector<Bsdf> bsdfs;                      // one per scene material
+  std::unique_ptr<TexturedMaterials> textures;  // null unless a material reads a texture
+  Camera camera;
+  PixelFilter filter;
+
+  // Builds geometry, lights, materials, camera and pixel filter for `desc` (which must outlive the world).
+  static Expected<std::unique_ptr<World>> build(const SceneDesc &desc);
+};
+
+}  // namespace nimbus
