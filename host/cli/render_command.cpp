@@ -19,6 +19,7 @@
 #include "cli/progress_display.hpp"
 #include "loader/plugin_registry.hpp"
 #include "render/render_session.hpp"
+#include "scene/pixel_filter_type.hpp"
 #include "scene/scene_parser.hpp"
 
 namespace nimbus::cli {
@@ -71,7 +72,8 @@ extern "C" void on_sigint(int) {
 struct Args {
   std::string scene;
   RenderOptions options;
-  std::optional<std::string> caustics, integrator, filter;
+  std::optional<std::string> caustics, integrator;
+  std::optional<FilterType> filter;
   std::optional<std::array<uint32_t, 4>> region;
   bool quiet = false;
 };
@@ -135,9 +137,8 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
         return "--caustics: expected 'on' or 'off', got '" + v + "'";
       a.caustics = v;
     } else if (k == "--filter") {
-      if (!value(v) || (v != "box" && v != "gaussian" && v != "blackman-harris"))
-        return "--filter: expected box, gaussian or blackman-harris, got '" + v + "'";
-      a.filter = v;
+      a.filter = value(v) ? filter_from_name(v) : std::nullopt;
+      if (!a.filter) return "--filter: expected one of " + filter_names() + ", got '" + v + "'";
     } else if (k == "--region") {
       std::array<uint32_t, 4> r{};
       std::stringstream ss(value(v) ? v : std::string());

@@ -73,7 +73,8 @@ std::string render_fingerprint(const SceneDesc &desc, const RenderOptions &optio
   lines += "\nregion=" + std::to_string(r[0]) + "," + std::to_string(r[1]) + "," + std::to_string(r[2]) +
            "," + std::to_string(r[3]);
   lines += "\nseed=" + std::to_string(desc.render.seed);
-  lines += "\nintegrator=" + integrator + "\nlight_sampler=" + sampler + "\nfilter=" + desc.render.filter;
+  lines += "\nintegrator=" + integrator + "\nlight_sampler=" + sampler +
+           "\nfilter=" + std::string(filter_name(desc.render.filter));
   lines += "\nmax_depth=" + std::to_string(desc.render.max_depth);
   lines += "\noptions=" + option_list + "\nelements=" + element_list + "\n";
   return lines;

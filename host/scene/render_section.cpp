@@ -2,8 +2,10 @@
 // pixel filter, render region and light sampler.
 #include <algorithm>
 #include <cctype>
+#include <optional>
 #include <string>
 
+#include "scene/pixel_filter_type.hpp"
 #include "scene/sections.hpp"
 
 namespace nimbus::scene_yaml {
@@ -12,7 +14,6 @@ namespace {
 
 constexpr int64_t kMaxResolution = 16384;
 constexpr int64_t kMaxDepth = 1024;
-const std::vector<std::string_view> kFilters{"box", "gaussian", "blackman-harris"};
 
 // `caustics: on|off` is the only integrator option v0 knows. Kept as written in RenderDesc::options
 // ("on"/"off"); YAML booleans are accepted because `on` and `true` read the same to users.
@@ -69,9 +70,10 @@ RenderDesc read_render(const YamlValue &section) {
     }
   }
   if (auto v = m.get("filter")) {
-    r.filter = v->string();
-    if (std::find(kFilters.begin(), kFilters.end(), r.filter) == kFilters.end())
-      v->fail("unknown pixel filter '" + abbreviate(r.filter) + "'; known: " + join_names(kFilters));
+    const std::string name = v->string();
+    const std::optional<FilterType> filter = filter_from_name(name);
+    if (!filter) v->fail("unknown pixel filter '" + abbreviate(name) + "'; known: " + filter_names());
+    r.filter = *filter;
   }
   if (auto v = m.get("region")) read_region(*v, r);
   // A plugin id; whether such a plugin exists is only known once plugins are loaded.

@@ -10,6 +10,7 @@
 
 #include <nimbus/cpp/math.hpp>
 #include "core/transform.hpp"
+#include "scene/pixel_filter_type.hpp"
 
 namespace nimbus {
 
@@ -31,7 +32,7 @@ struct RenderDesc {
   // Options for the integrator (e.g. caustics: on). Values are kept as written.
   std::map<std::string, std::string> options;
   std::vector<std::string> elements;  // requested render elements besides beauty
-  std::string filter = "box";         // pixel filter: box | gaussian | blackman-harris
+  FilterType filter = FilterType::Box;
   // Render region (crop window) in pixels, [x0, x1) x [y0, y1); empty (all zero) = the whole image.
   uint32_t region[4] = {0, 0, 0, 0};
   std::string light_sampler;  // empty: the host's choice

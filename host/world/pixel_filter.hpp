@@ -8,10 +8,9 @@
 
 #include <nimbus/cpp/math.hpp>
 #include "core/distribution.hpp"
+#include "scene/pixel_filter_type.hpp"
 
 namespace nimbus {
-
-enum class FilterType { Box, Gaussian, BlackmanHarris };
 
 class PixelFilter {
  public:

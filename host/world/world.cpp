@@ -15,16 +15,7 @@ Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc) {
   if (!textures) return textures.error();
   world->textures = std::move(textures.value());
   world->camera = Camera(desc.camera, desc.render.width, desc.render.height);
-  const std::string &f = desc.render.filter;
-  if (f == "box") {
-    world->filter = PixelFilter(FilterType::Box);
-  } else if (f == "gaussian") {
-    world->filter = PixelFilter(FilterType::Gaussian);
-  } else if (f == "blackman-harris") {
-    world->filter = PixelFilter(FilterType::BlackmanHarris);
-  } else {
-    return Error{desc.path + ": unknown pixel filter '" + f + "' (known: box, gaussian, blackman-harris)"};
-  }
+  world->filter = PixelFilter(desc.render.filter);
   return world;
 }
 

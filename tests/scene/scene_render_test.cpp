@@ -15,7 +15,7 @@ TEST(SceneRender, FilterRegionSamplerAndTargetError) {
   target_error: 0.01
 )");
   const RenderDesc &r = scene.render;
-  EXPECT_EQ(r.filter, "blackman-harris");
+  EXPECT_EQ(r.filter, FilterType::BlackmanHarris);
   // Checked against the resolution even though `region` comes first.
   EXPECT_EQ(std::vector<uint32_t>(r.region, r.region + 4), (std::vector<uint32_t>{10, 20, 110, 220}));
   EXPECT_EQ(r.light_sampler, "nimbus.lights.tree");
@@ -24,7 +24,7 @@ TEST(SceneRender, FilterRegionSamplerAndTargetError) {
 
 TEST(SceneRender, DefaultsOfTheV1Keys) {
   const RenderDesc r = parse_ok("render: { seed: 2 }\n").render;
-  EXPECT_EQ(r.filter, "box");
+  EXPECT_EQ(r.filter, FilterType::Box);
   EXPECT_EQ(std::vector<uint32_t>(r.region, r.region + 4), (std::vector<uint32_t>{0, 0, 0, 0}));
   EXPECT_EQ(r.light_sampler, "");
   EXPECT_EQ(r.target_error, 0);
@@ -32,7 +32,8 @@ TEST(SceneRender, DefaultsOfTheV1Keys) {
 
 TEST(SceneRender, EveryFilterAndAWholeImageRegion) {
   for (const char *filter : {"box", "gaussian", "blackman-harris"})
-    EXPECT_EQ(parse_ok(std::string("render: { filter: ") + filter + " }\n").render.filter, filter);
+    EXPECT_EQ(filter_name(parse_ok(std::string("render: { filter: ") + filter + " }\n").render.filter),
+              filter);
   const RenderDesc r = parse_ok("render: { resolution: [64, 32], region: [0, 0, 64, 32] }\n").render;
   EXPECT_EQ(r.region[2], 64u);
   EXPECT_EQ(r.region[3], 32u);
