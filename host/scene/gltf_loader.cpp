@@ -29,6 +29,15 @@ bool skip_image(tinygltf::Image *, const int, std::string *, std::string *, int,
   return true;
 }
 
+// tinygltf's own file reading (so its messages stay as they are), with what it read recorded.
+bool read_and_record(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *log) {
+  if (!tinygltf::ReadWholeFile(out, err, path, nullptr)) return false;
+  if (log)
+    static_cast<SourceLog *>(log)->record(
+        path, std::string_view(reinterpret_cast<const char *>(out->data()), out->size()));
+  return true;
+}
+
 // The bytes of element i of an accessor, bounds-checked against its buffer: a malformed file must give an
 // error, not a read past the end.
 class AccessorView {
@@ -302,13 +311,15 @@ std::optional<GltfMaterial> material_of(const tinygltf::Model &model, int index,
 
 }  // namespace
 
-Expected<GltfMesh> load_gltf_mesh(const std::filesystem::path &path) {
+Expected<GltfMesh> load_gltf_mesh(const std::filesystem::path &path, SourceLog *log) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return Error{"No such file or directory"};
   if (std::filesystem::is_directory(path, ec)) return Error{"is a directory"};
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
+  loader.SetFsCallbacks(
+      {&tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_and_record, &tinygltf::WriteWholeFile, log});
   tinygltf::Model model;
   std::string err, warn;
   const bool binary = path.extension() == ".glb" || path.extension() == ".GLB";

@@ -7,6 +7,7 @@
 
 #include "core/expected.hpp"
 #include "scene/scene_desc.hpp"
+#include "scene/source_log.hpp"
 
 namespace nimbus {
 
@@ -29,6 +30,7 @@ struct GltfMesh {
 // applied, merged into one mesh. Normals and uvs (TEXCOORD_0) are kept only when every primitive has them,
 // since MeshData stores them per vertex; v is flipped (glTF's v = 0 is the top of the image, Nimbus's the
 // bottom). Images are not decoded. On failure the Error holds the reason only; the caller adds the path.
-Expected<GltfMesh> load_gltf_mesh(const std::filesystem::path &path);
+// The file and every file tinygltf reads for it (buffers, images) are recorded in `log` (may be null).
+Expected<GltfMesh> load_gltf_mesh(const std::filesystem::path &path, SourceLog *log);
 
 }  // namespace nimbus

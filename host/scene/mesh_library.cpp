@@ -28,13 +28,13 @@ std::shared_ptr<const LoadedMesh> MeshLibrary::load(const YamlValue &file) {
   mesh->file = key.string();
   std::string reason;
   if (ext == ".obj") {
-    Expected<MeshData> obj = load_obj_mesh(path);
+    Expected<MeshData> obj = load_obj_mesh(path, file.source().log);
     if (obj)
       mesh->mesh = std::move(obj).value();
     else
       reason = obj.error().message;
   } else if (ext == ".gltf" || ext == ".glb") {
-    Expected<GltfMesh> gltf = load_gltf_mesh(path);
+    Expected<GltfMesh> gltf = load_gltf_mesh(path, file.source().log);
     if (gltf) {
       mesh->mesh = std::move(gltf->mesh);
       mesh->material = std::move(gltf->material);

@@ -1,10 +1,8 @@
 #include "scene/obj_loader.hpp"
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <tuple>
 
@@ -20,13 +18,6 @@ std::string one_line(std::string s) {
   return s;
 }
 
-std::string open_failure(const std::filesystem::path &path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return "No such file or directory";
-  if (std::filesystem::is_directory(path, ec)) return "is a directory";
-  return std::strerror(errno);
-}
-
 // tinyobjloader's real_t is float or double depending on how the system package was built.
 Vec3f vec3_at(const std::vector<tinyobj::real_t> &values, size_t index) {
   return {float(values[3 * index]), float(values[3 * index + 1]), float(values[3 * index + 2])};
@@ -39,10 +30,10 @@ struct ParsedObj {
   bool all_normals = true, all_uvs = true;
 };
 
-Expected<ParsedObj> parse_obj(const std::filesystem::path &path) {
-  errno = 0;
-  std::ifstream in(path);
-  if (!in) return Error{open_failure(path)};
+Expected<ParsedObj> parse_obj(const std::filesystem::path &path, SourceLog *log) {
+  Expected<std::string> text = read_source_file(path, log);
+  if (!text) return text.error();
+  std::istringstream in(std::move(text).value());
 
   ParsedObj obj;
   tinyobj::attrib_t &attrib = obj.attrib;
@@ -96,8 +87,8 @@ Expected<ParsedObj> parse_obj(const std::filesystem::path &path) {
 
 }  // namespace
 
-Expected<MeshData> load_obj_mesh(const std::filesystem::path &path) {
-  Expected<ParsedObj> parsed = parse_obj(path);
+Expected<MeshData> load_obj_mesh(const std::filesystem::path &path, SourceLog *log) {
+  Expected<ParsedObj> parsed = parse_obj(path, log);
   if (!parsed) return parsed.error();
   const tinyobj::attrib_t &attrib = parsed->attrib;
   const std::vector<tinyobj::shape_t> &shapes = parsed->shapes;
@@ -141,8 +132,8 @@ Expected<MeshData> load_obj_mesh(const std::filesystem::path &path) {
   return mesh;
 }
 
-Expected<PolygonMesh> load_obj_polygons(const std::filesystem::path &path) {
-  Expected<ParsedObj> parsed = parse_obj(path);
+Expected<PolygonMesh> load_obj_polygons(const std::filesystem::path &path, SourceLog *log) {
+  Expected<ParsedObj> parsed = parse_obj(path, log);
   if (!parsed) return parsed.error();
   PolygonMesh out;
   const std::vector<tinyobj::real_t> &v = parsed->attrib.vertices;

@@ -11,6 +11,7 @@
 #include <nimbus/cpp/math.hpp>
 #include "core/transform.hpp"
 #include "scene/pixel_filter_type.hpp"
+#include "scene/source_log.hpp"
 
 namespace nimbus {
 
@@ -141,6 +142,8 @@ struct EnvironmentDesc {
 
 struct SceneDesc {
   std::string path;  // the scene file
+  // The scene's text and every file the parser read for it, with a hash of each (scene/source_log.hpp).
+  std::vector<SourceFile> sources;
   RenderDesc render;
   CameraDesc camera;
   std::vector<MaterialDesc> materials;

@@ -1,10 +1,6 @@
 #include "scene/scene_includes.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "scene/yaml_document.hpp"
 
@@ -31,18 +27,6 @@ YAML::Node load_document(const std::string &text, const std::string &display_nam
 }
 
 }  // namespace
-
-Expected<std::string> read_text_file(const std::filesystem::path &path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return Error{"is a directory"};
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{errno != 0 ? std::strerror(errno) : "cannot open"};
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) return Error{"read error"};
-  return text.str();
-}
 
 SceneFiles::SceneFiles(const YamlValue &root) {
   if (!root.source().file.empty()) {
@@ -79,7 +63,7 @@ void SceneFiles::add(const YamlValue &root, bool main) {
 void SceneFiles::include(const YamlValue &entry) {
   const std::filesystem::path path = entry.source().resolve(entry.nonempty_string()).lexically_normal();
   const std::string shown = path.string();
-  Expected<std::string> text = read_text_file(path);
+  Expected<std::string> text = read_source_file(path, entry.source().log);
   if (!text) entry.fail("cannot read included file '" + shown + "': " + text.error().message);
 
   std::error_code ec;
@@ -95,7 +79,7 @@ void SceneFiles::include(const YamlValue &entry) {
   if (seen_.count(canonical)) return;
   seen_.insert(canonical);
 
-  sources_.push_back(SceneSource{shown, path.parent_path(), path});
+  sources_.push_back(SceneSource{shown, path.parent_path(), path, entry.source().log});
   const SceneSource &source = sources_.back();
   const YAML::Node document = load_document(*text, source.display_name);
   if (!document || document.IsNull()) return;  // an empty file adds nothing

@@ -46,7 +46,4 @@ class SceneFiles {
   std::set<std::filesystem::path> seen_;
 };
 
-// The text of a file, or the reason it cannot be read ("No such file or directory", "is a directory").
-Expected<std::string> read_text_file(const std::filesystem::path &path);
-
 }  // namespace nimbus::scene_yaml

@@ -71,12 +71,15 @@ SceneDesc read_scene(const YAML::Node &document, const SceneSource &source) {
   return scene;
 }
 
-// The one place exceptions stop: ParseFailure from the readers, yaml-cpp's exceptions (syntax errors carry
-// a mark), and anything unexpected (e.g. bad_alloc on a huge mesh) all become Error values.
-Expected<SceneDesc> parse_text(const std::string &yaml, const SceneSource &source) {
+// The one place exceptions stop (and where the files read are handed to the SceneDesc): ParseFailure from the
+// readers, yaml-cpp's exceptions (syntax errors carry a mark), and anything unexpected (e.g. bad_alloc on a
+// huge mesh) all become Error values.
+Expected<SceneDesc> parse_text(const std::string &yaml, const SceneSource &source, SourceLog &log) {
   const std::string &file = source.display_name;
   try {
-    return read_scene(scene_yaml::load_single_document(yaml, file), source);
+    SceneDesc scene = read_scene(scene_yaml::load_single_document(yaml, file), source);
+    scene.sources = log.take();
+    return scene;
   } catch (const ParseFailure &failure) {
     return Error{failure.message};
   } catch (const YAML::Exception &e) {
@@ -91,14 +94,18 @@ Expected<SceneDesc> parse_text(const std::string &yaml, const SceneSource &sourc
 }  // namespace
 
 Expected<SceneDesc> parse_scene_file(const std::string &path) {
-  Expected<std::string> text = scene_yaml::read_text_file(path);
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  SourceLog log(dir);
+  Expected<std::string> text = read_source_file(path, &log);
   if (!text)
     return Error{scene_yaml::format_error(path, 0, 0, "", "cannot read scene file: " + text.error().message)};
-  return parse_text(*text, SceneSource{path, std::filesystem::path(path).parent_path(), path});
+  return parse_text(*text, SceneSource{path, dir, path, &log}, log);
 }
 
 Expected<SceneDesc> parse_scene_string(const std::string &yaml, const std::string &display_name) {
-  return parse_text(yaml, SceneSource{display_name, {}, {}});
+  SourceLog log({});
+  log.record_scene(display_name, yaml);
+  return parse_text(yaml, SceneSource{display_name, {}, {}, &log}, log);
 }
 
 }  // namespace nimbus

@@ -20,7 +20,7 @@ SubdivisionCage read_cage_file(const YamlMap &m, const YamlValue &file) {
   for (const char *other : {"positions", "faces"})
     if (m.has(other)) m.key(other).fail("cannot be combined with 'file'");
   const std::filesystem::path path = file.source().resolve(file.nonempty_string());
-  Expected<PolygonMesh> obj = load_obj_polygons(path);
+  Expected<PolygonMesh> obj = load_obj_polygons(path, file.source().log);
   if (!obj) file.fail("cannot load cage '" + path.string() + "': " + obj.error().message);
   SubdivisionCage cage;
   cage.positions = std::move(obj->positions);

@@ -16,6 +16,7 @@
 
 #include <nimbus/cpp/math.hpp>
 #include "scene/scene_desc.hpp"
+#include "scene/source_log.hpp"
 
 namespace nimbus::scene_yaml {
 
@@ -32,6 +33,7 @@ struct SceneSource {
   std::string display_name;
   std::filesystem::path base_dir;
   std::filesystem::path file;  // the file the text was read from; empty for text given directly
+  SourceLog *log = nullptr;    // where the files this one names (includes, meshes) are recorded as read
 
   std::filesystem::path resolve(const std::string &relative_or_absolute) const;
 };

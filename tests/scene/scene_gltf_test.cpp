@@ -4,6 +4,7 @@
 
 #include <cstring>
 
+#include "core/checksum.hpp"
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
@@ -202,6 +203,23 @@ TEST(SceneGltf, InstanceOfAGltfMesh) {
   EXPECT_EQ(scene.materials[0].name, "Painted");
   ASSERT_EQ(scene.shapes.size(), 2u);
   expect_vec(scene.shapes[1].mesh.positions[0], {5, 0, 0});
+}
+
+// The file and the buffer tinygltf reads for it are both in the scene's sources (scene_sources_test.cpp).
+TEST(SceneGltf, TheFileAndItsBufferAreRecordedAsRead) {
+  TempDir dir;
+  const std::vector<unsigned char> bytes = quad_buffer();
+  const std::string bin = dir.write("models/quad.bin", std::string(bytes.begin(), bytes.end()));
+  const std::string gltf = quad_gltf("quad.bin");
+  const std::string file = dir.write("models/quad.gltf", gltf);
+  const std::string main = dir.write("main.yaml", object_with("models/quad.gltf"));
+  const Expected<SceneDesc> scene = parse_scene_file(main);
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  ASSERT_EQ(scene->sources.size(), 3u);
+  EXPECT_EQ(scene->sources[1].path, "models/quad.gltf");
+  EXPECT_EQ(scene->sources[1].hash, content_hash(gltf));
+  EXPECT_EQ(scene->sources[2].path, "models/quad.bin");
+  EXPECT_EQ(scene->sources[2].bytes, bytes.size());
 }
 
 TEST(SceneGltfErrors, NoMaterialAnywhere) {
