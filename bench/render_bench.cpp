@@ -64,7 +64,7 @@ BENCHMARK(BM_PathTracerDefaultScene)->UseManualTime()->Unit(benchmark::kMillisec
 void BM_EmbreeClosestHitDefaultScene(benchmark::State &state) {
   auto desc = parse_scene_file(kScene);
   if (!desc) return state.SkipWithError(desc.error().message.c_str());
-  auto world = World::build(desc.value());
+  auto world = World::build(desc.value(), desc->render.filter);
   if (!world) return state.SkipWithError(world.error().message.c_str());
   RTCScene scene = (*world)->geometry->rtc_scene();
   const Vec3f lo = (*world)->geometry->bounds_min(), hi = (*world)->geometry->bounds_max();

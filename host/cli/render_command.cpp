@@ -72,8 +72,7 @@ extern "C" void on_sigint(int) {
 struct Args {
   std::string scene;
   RenderOptions options;
-  std::optional<std::string> caustics, integrator;
-  std::optional<FilterType> filter;
+  std::optional<std::string> caustics;
   std::optional<std::array<uint32_t, 4>> region;
   bool quiet = false;
 };
@@ -137,8 +136,8 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
         return "--caustics: expected 'on' or 'off', got '" + v + "'";
       a.caustics = v;
     } else if (k == "--filter") {
-      a.filter = value(v) ? filter_from_name(v) : std::nullopt;
-      if (!a.filter) return "--filter: expected one of " + filter_names() + ", got '" + v + "'";
+      a.options.filter = value(v) ? filter_from_name(v) : std::nullopt;
+      if (!a.options.filter) return "--filter: expected one of " + filter_names() + ", got '" + v + "'";
     } else if (k == "--region") {
       std::array<uint32_t, 4> r{};
       std::stringstream ss(value(v) ? v : std::string());
@@ -154,7 +153,7 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
       a.options.light_sampler = v;
     } else if (k == "--integrator") {
       if (!value(v) || v.empty()) return "--integrator: expected a plugin id";
-      a.integrator = v;
+      a.options.integrator = v;
     } else if (k == "--checkpoint") {
       if (!value(v) || v.empty()) return "--checkpoint: expected a file name";
       a.options.checkpoint_path = v;
@@ -197,8 +196,6 @@ int render_command(const std::vector<std::string> &argv) {
   }
   SceneDesc &desc = scene.value();
   if (a.caustics) desc.render.options["caustics"] = *a.caustics;
-  if (a.integrator) desc.render.integrator = *a.integrator;
-  if (a.filter) desc.render.filter = *a.filter;
   if (a.region) {
     if ((*a.region)[2] > desc.render.width || (*a.region)[3] > desc.render.height) {
       std::fprintf(stderr, "nimbus render: --region exceeds the image (%ux%u)\n", desc.render.width,

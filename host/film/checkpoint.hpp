@@ -33,7 +33,7 @@ struct CheckpointInfo {
   // read_checkpoint.
   uint64_t iterations = 0;
   uint64_t seed = 0;
-  // What the sums depend on, as "key=value" lines (see render_session.cpp); read_checkpoint compares
+  // What the sums depend on, as "key=value" lines (RenderJob::fingerprint); read_checkpoint compares
   // them line by line, so a mismatch names what changed.
   std::string fingerprint;
   std::string integrator;  // plugin id

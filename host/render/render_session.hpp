@@ -1,47 +1,22 @@
-// The progressive loop: builds the scene, binds the integrator and light sampler plugins, runs
-// iterations until the iteration count, time budget or cancellation, and writes the output files.
-// All four ways of stopping end the same way: a complete, valid EXR (and PNG) with the sample count.
+// A render session: the scene and the command line resolved into a render job (render_job.hpp), the world
+// built, the integrator and light sampler bound (bind_plugins.hpp), the film set up and restored from a
+// checkpoint when resuming, the progressive loop run (progressive_loop.hpp) until the iteration count,
+// time budget, error target or cancellation, and the output files written (render_outputs.hpp). All four
+// ways of stopping end the same way: a complete, valid EXR (and PNG) with the sample count.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
-#include <optional>
 #include <string>
-#include <vector>
 
 #include "core/expected.hpp"
+#include "render/render_job.hpp"
 #include "scene/scene_desc.hpp"
 
 namespace nimbus {
 
 class PluginRegistry;
-
-struct RenderOptions {
-  std::optional<uint64_t> iterations;  // overrides the scene
-  std::optional<double> time_seconds;  // overrides the scene
-  std::optional<uint64_t> seed;        // overrides the scene
-  // Stop once the estimated relMSE of beauty (from odd/even half images, no reference) falls below it.
-  std::optional<double> target_error;
-  uint32_t threads = 0;               // 0 = all cores
-  std::vector<std::string> elements;  // in addition to the scene's
-  std::string output_exr;             // PNG preview goes beside it (same stem)
-  std::string ocio_config;            // empty = default lookup
-  // Empty: nimbus.lights.tree above kTreeLightThreshold lights, nimbus.lights.power otherwise.
-  std::string light_sampler;
-  // Checkpoints (film/checkpoint.hpp): written between iterations every checkpoint_interval_seconds (<= 0:
-  // none on the way) and whenever the loop stops, and kept after the final image so that a finished
-  // render can be extended. Empty path: `<output_exr>.ckpt`.
-  std::string checkpoint_path;
-  double checkpoint_interval_seconds = 300;
-  // Continue from the checkpoint instead of starting afresh. `iterations` then counts the total, so a
-  // render of 3 resumed with iterations = 6 renders iterations 4 to 6 and equals, bit for bit, a render
-  // of 6. A checkpoint already holding that many iterations just rewrites the output files.
-  bool resume = false;
-};
-
-// Scenes with more lights than this get the many-light tree by default.
-inline constexpr uint32_t kTreeLightThreshold = 8;
 
 struct RenderProgress {
   uint64_t iteration = 0;         // completed iterations

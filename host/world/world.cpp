@@ -2,7 +2,7 @@
 
 namespace nimbus {
 
-Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc) {
+Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc, FilterType filter) {
   auto world = std::make_unique<World>();
   auto geo = GeometryScene::build(desc);
   if (!geo) return geo.error();
@@ -15,7 +15,7 @@ Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc) {
   if (!textures) return textures.error();
   world->textures = std::move(textures.value());
   world->camera = Camera(desc.camera, desc.render.width, desc.render.height);
-  world->filter = PixelFilter(desc.render.filter);
+  world->filter = PixelFilter(filter);
   return world;
 }
 

@@ -25,8 +25,9 @@ struct World {
   Camera camera;
   PixelFilter filter;
 
-  // Builds geometry, lights, materials, camera and pixel filter for `desc` (which must outlive the world).
-  static Expected<std::unique_ptr<World>> build(const SceneDesc &desc);
+  // Builds geometry, lights, materials and camera for `desc` (which must outlive the world), and the pixel
+  // filter the render job resolved (the scene's, or the command line's instead).
+  static Expected<std::unique_ptr<World>> build(const SceneDesc &desc, FilterType filter);
 };
 
 }  // namespace nimbus

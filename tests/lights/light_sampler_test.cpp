@@ -58,7 +58,7 @@ class SamplerHarness {
     auto desc = parse_scene_string(yaml, "many.yaml");
     EXPECT_TRUE(desc.ok()) << (desc.ok() ? "" : desc.error().message);
     desc_ = std::move(desc.value());
-    auto world = World::build(desc_);
+    auto world = World::build(desc_, desc_.render.filter);
     EXPECT_TRUE(world.ok());
     world_ = std::move(world.value());
     run_ = std::make_unique<RunState>(desc_.render.width, desc_.render.height, 1, desc_.render.seed);

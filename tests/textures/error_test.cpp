@@ -105,7 +105,7 @@ TEST(TextureErrors, SceneBuildNamesTheResolvedPathAndTheSceneLocation) {
   auto desc = parse_scene_file(scene);
   ASSERT_TRUE(desc.ok()) << desc.error().message;
   EXPECT_EQ(desc.value().materials[0].albedo_texture.path, dir.file("maps/missing.png"));
-  auto world = World::build(desc.value());
+  auto world = World::build(desc.value(), desc->render.filter);
   ASSERT_FALSE(world.ok());
   EXPECT_EQ(world.error().message,
             scene + ":3:42: error: materials.m.albedo.texture: " + dir.file("maps/missing.png") +

@@ -173,7 +173,7 @@ TEST(TexturedRender, LightTracerAgreesOnNormalMappedShading) {
 TEST(TexturedRender, UntexturedSceneOpensNoTextureSystem) {
   auto desc = parse_scene_string(lit_quad("{ type: diffuse, albedo: 0.8 }"), "plain.yaml");
   ASSERT_TRUE(desc.ok()) << desc.error().message;
-  auto world = World::build(desc.value());
+  auto world = World::build(desc.value(), desc->render.filter);
   ASSERT_TRUE(world.ok()) << world.error().message;
   EXPECT_EQ(world.value()->textures, nullptr);
 }

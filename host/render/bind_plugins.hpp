@@ -1,0 +1,31 @@
+// The plugins of one render: the integrator the job names and the light sampler it chooses, created
+// for the render's host, their interface tables checked against the SDK 1.0 sizes, then prepared for
+// the world. Ids and features come from the loader's validated descriptor copies (PluginHandle).
+#pragma once
+
+#include <nimbus/nimbus.h>
+
+#include "core/expected.hpp"
+#include "loader/plugin_registry.hpp"
+#include "render/render_job.hpp"
+#include "world/world.hpp"
+
+namespace nimbus {
+
+struct BoundPlugins {
+  // Destroyed in reverse order: the sampler before the integrator that was handed it.
+  PluginHandle integrator, sampler;
+  const nimbus_integrator_v1_t *it = nullptr;
+  const nimbus_light_sampler_v1_t *ls = nullptr;
+};
+
+// Creates both plugins for `host` (which must outlive them); the sampler is chosen for `light_count`.
+Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &job, uint32_t light_count,
+                                    const nimbus_host_t *host);
+
+// prepare() of both: the sampler builds its tables for the world, then the integrator receives its
+// setup (resolution, options, seed, the sampler) and registers the film elements it can produce.
+Status prepare_plugins(const BoundPlugins &plugins, const RenderJob &job, const World &world,
+                       uint32_t worker_count);
+
+}  // namespace nimbus

@@ -1,0 +1,114 @@
+#include "render/progressive_loop.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+
+#include <tbb/parallel_for.h>
+
+namespace nimbus {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Every tile of iteration i, in parallel in the run's arena; the first failing status, or NIMBUS_OK.
+nimbus_status_t render_tiles(const BoundPlugins &p, RunState &run, const Tiling &tiling, uint64_t i) {
+  std::atomic<nimbus_status_t> tile_status{NIMBUS_OK};
+  run.arena->execute([&] {
+    tbb::parallel_for(size_t(0), tiling.tiles.size(), [&](size_t t) {
+      const int wi = tbb::this_task_arena::current_thread_index();
+      nimbus_thread_ctx_t tc{
+          sizeof(nimbus_thread_ctx_t), uint32_t(wi < 0 ? 0 : wi), run.worker_count, 0, nullptr, 0};
+      nimbus_tile_t tile = tiling.tiles[t];
+      tile.iteration = i;
+      if (nimbus_status_t s = p.it->render_tile(p.integrator.get(), &tc, &tile); s != NIMBUS_OK) {
+        nimbus_status_t expected = NIMBUS_OK;
+        tile_status.compare_exchange_strong(expected, s);
+      }
+    });
+  });
+  return tile_status.load();
+}
+
+}  // namespace
+
+std::string LoopOutcome::stopped_by(const StopRules &stop) const {
+  return failure != NIMBUS_OK                           ? "error"
+         : cancelled                                    ? "cancel"
+         : reached_target                               ? "target_error"
+         : (stop.iterations && done >= stop.iterations) ? "iterations"
+                                                        : "time";
+}
+
+LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &p, RunState &run,
+                                 const Tiling &tiling, RenderCheckpoint &checkpoint,
+                                 const ProgressFn &progress, const MessageFn &message) {
+  const StopRules &stop = job.stop;
+  Film &film = run.film;
+  std::atomic<bool> &cancel = *run.cancel;
+  LoopOutcome out;
+  out.resumed_from = out.done = film.iterations();
+  const auto t0 = Clock::now();
+  checkpoint.start(out.done, t0);
+  while (!cancel.load() && !out.reached_target) {
+    const uint64_t done = out.done;
+    if (stop.iterations && done >= stop.iterations) break;
+    if (stop.time_seconds > 0 && done > out.resumed_from) {
+      // Stop when another iteration would overrun the budget (estimated from this session's mean).
+      const double elapsed = seconds_since(t0);
+      if (elapsed + elapsed / double(done - out.resumed_from) > stop.time_seconds) break;
+    }
+    // Between iterations the sums are complete (splats merged): the only safe moment to save them.
+    checkpoint.save_if_due(film, done, message);
+    const uint64_t i = done + 1;
+    run.iteration = i;
+    if (nimbus_status_t s = p.it->begin_iteration(p.integrator.get(), i); s != NIMBUS_OK) {
+      out.failure = s, out.failure_hook = "begin_iteration";
+      break;
+    }
+    if (nimbus_status_t s = render_tiles(p, run, tiling, i); s != NIMBUS_OK) {
+      out.failure = s, out.failure_hook = "render_tile";
+      break;
+    }
+    film.merge_splats();
+    // Optional: a sampler's table may end before end_iteration (kLightSamplerMinSize).
+    if (NIMBUS_HAS_MEMBER(p.ls, nimbus_light_sampler_v1_t, end_iteration) && p.ls->end_iteration)
+      p.ls->end_iteration(p.sampler.get(), i);
+    if (nimbus_status_t s = p.it->end_iteration(p.integrator.get(), i); s != NIMBUS_OK) {
+      out.failure = s, out.failure_hook = "end_iteration";
+      break;
+    }
+    film.end_iteration();
+    out.done = i;
+    if (run.error_estimate) {
+      run.error_estimate->end_iteration(i);
+      if (i % 2 == 0) {
+        out.estimated_error = run.error_estimate->relmse(film);
+        if (out.estimated_error < stop.target_error) out.reached_target = true;
+      }
+    }
+    if (progress) {
+      RenderProgress r;
+      r.iteration = out.done;
+      r.total_iterations = stop.iterations;
+      r.elapsed_seconds = seconds_since(t0);
+      r.time_budget = stop.time_seconds;
+      r.samples_per_second =
+          double(tiling.pixels) * (out.done - out.resumed_from) / std::max(r.elapsed_seconds, 1e-9);
+      std::lock_guard lock(run.phase_mutex);
+      r.phase = run.phase;
+      progress(r);
+    }
+  }
+  out.seconds = seconds_since(t0);
+  out.cancelled = cancel.load();
+  p.it->end_render(p.integrator.get(),
+                   out.failure != NIMBUS_OK ? out.failure : (out.cancelled ? NIMBUS_E_CANCELLED : NIMBUS_OK));
+  return out;
+}
+
+}  // namespace nimbus

@@ -1,0 +1,66 @@
+#include "render/render_outputs.hpp"
+
+#include <nimbus/film.h>
+
+#include <algorithm>
+#include <cctype>
+
+namespace nimbus {
+
+std::vector<std::string> lightmix_layer_names(const std::vector<std::string> &groups) {
+  std::vector<std::string> names;
+  for (const std::string &g : groups) {
+    std::string n;
+    for (char c : g) n += (std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(c)) : '_');
+    if (n.empty()) n = "group";
+    std::string unique = "lightmix." + n;
+    for (int k = 2; std::find(names.begin(), names.end(), unique) != names.end(); ++k)
+      unique = "lightmix." + n + "_" + std::to_string(k);
+    names.push_back(unique);
+  }
+  return names;
+}
+
+Status set_up_film(Film &film, const RenderJob &job, const PluginHandle &integrator,
+                   const std::vector<std::string> &light_groups, uint32_t workers,
+                   std::vector<int32_t> &lightmix_elements) {
+  for (const std::string &e : job.elements) film.request(e);
+  if (job.lightmix && !integrator.record().has_feature("lightmix"))
+    return Error{"integrator '" + integrator.id() +
+                 "' does not produce LightMix layers (no \"lightmix\" feature)"};
+  if (job.lightmix) {
+    // One layer per light group; the integrator's contributions per light sum to beauty.
+    for (const std::string &g : lightmix_layer_names(light_groups)) {
+      const int32_t id = film.register_element(g, 3, NIMBUS_ELEMENT_SPLAT);
+      if (id < 0) return Error{"cannot create LightMix layer '" + g + "'"};
+      film.request(g);
+      lightmix_elements.push_back(id);
+    }
+  }
+  if (Status s = film.allocate(); !s) return s.error();
+  film.set_worker_count(workers);
+  return Ok{};
+}
+
+Status write_outputs(const RenderJob &job, const Film &film, const RenderFacts &facts) {
+  const std::vector<std::pair<std::string, std::string>> smeta = {
+      {"version", NIMBUS_VERSION_STRING},     {"integrator", facts.integrator},
+      {"light_sampler", facts.light_sampler}, {"scene", job.scene->path},
+      {"seed", std::to_string(job.seed)},  // exact for any 64-bit seed
+      {"stopped_by", facts.stopped_by}};
+  std::vector<std::pair<std::string, double>> nmeta = {{"iterations", double(facts.iterations)},
+                                                       {"seconds", facts.seconds},
+                                                       {"threads", double(facts.threads)},
+                                                       {"nonfinite_samples", double(film.nonfinite_count())},
+                                                       {"rays", double(facts.rays)}};
+  if (facts.estimated_relmse) {
+    nmeta.push_back({"target_error", job.stop.target_error});
+    nmeta.push_back({"estimated_relmse", *facts.estimated_relmse});
+  }
+  if (facts.resumed_from) nmeta.push_back({"resumed_from", double(*facts.resumed_from)});
+  for (const auto &[k, v] : facts.stats) nmeta.push_back({"stat:" + k, v});
+  if (Status s = film.write_exr(job.exr_path, smeta, nmeta); !s) return s.error();
+  return film.write_png(job.png_path, job.ocio_config);
+}
+
+}  // namespace nimbus
