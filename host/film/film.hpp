@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include <nimbus/cpp/per_worker.hpp>
+
 #include "core/expected.hpp"
 
 namespace nimbus {
@@ -103,8 +105,9 @@ class Film {
   Status write_png(const std::string &path, const std::string &ocio_config_path) const;
 
  private:
-  struct alignas(64) WorkerSplats {  // one cache line per worker: the dirty flag is written hot
-    std::vector<double> sum;         // empty until the worker's first splat into this element
+  struct alignas(sdk::kCacheLineBytes)
+      WorkerSplats {          // one cache line per worker: the dirty flag is written hot
+    std::vector<double> sum;  // empty until the worker's first splat into this element
     bool dirty = false;
   };
   struct Element {

@@ -1,6 +1,6 @@
 // The parsed scene: plain data, validated, in world space, with no renderer state. The parser
-// (scene_parser.hpp) produces it from YAML; the scene builder (render/scene_builder) turns it into Embree
-// geometry, materials and lights.
+// (scene_parser.hpp) produces it from YAML; the world (world/world.hpp) is built from it: Embree geometry,
+// materials, lights, camera and pixel filter.
 #pragma once
 
 #include <cstdint>
