@@ -1,6 +1,6 @@
 # cmake -DNM=<nm> -DDIRS=<dir|dir...> -P check_plugin_dir_exports.cmake
 #
-# The exports check of tests/plugins/check_exports.cmake applied to every *.so found in DIRS when the test
+# The exports check of tests/loader/check_exports.cmake applied to every *.so found in DIRS when the test
 # runs, not when CMake configured: a plugin added later (or by another module) is checked without
 # anyone remembering to list it. Finding none is a failure: an empty glob would prove nothing.
 string(REPLACE "|" ";" DIRS "${DIRS}")
@@ -13,4 +13,4 @@ foreach(dir IN LISTS DIRS)
   list(APPEND LIBS ${found})
 endforeach()
 string(JOIN "|" LIBS ${LIBS})
-include(${CMAKE_CURRENT_LIST_DIR}/../plugins/check_exports.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/../loader/check_exports.cmake)

@@ -93,7 +93,7 @@ for ex in "${examples[@]}"; do
     --no-warn-unused-cli >"$work/configure-bt-$dir.log" 2>&1 || fail "configure $dir: $(cat "$work/configure-bt-$dir.log")"
   "$cmake" --build "$work/buildtree-$dir" >"$work/build-bt-$dir.log" 2>&1 ||
     fail "build $dir against the build tree: $(cat "$work/build-bt-$dir.log")"
-  "$cmake" "-DNM=$nm" "-DLIBS=$work/buildtree-$dir/lib$target.so" -P "$src/tests/plugins/check_exports.cmake" ||
+  "$cmake" "-DNM=$nm" "-DLIBS=$work/buildtree-$dir/lib$target.so" -P "$src/tests/loader/check_exports.cmake" ||
     fail "$dir built against the build tree exports more than the entry"
 
   step "configure, build and install $dir against $prefix"
@@ -108,7 +108,7 @@ for ex in "${examples[@]}"; do
   "$cmake" --install "$work/build-$dir" --prefix "$plugins" >/dev/null || fail "install $dir"
   lib=$plugins/lib/nimbus/plugins/lib$target.so
   [[ -f $lib ]] || fail "nimbus_add_plugin() did not install $lib"
-  "$cmake" "-DNM=$nm" "-DLIBS=$lib" -P "$src/tests/plugins/check_exports.cmake" || fail "$lib exports more than the entry"
+  "$cmake" "-DNM=$nm" "-DLIBS=$lib" -P "$src/tests/loader/check_exports.cmake" || fail "$lib exports more than the entry"
 done
 
 step "nimbus plugins"

@@ -55,7 +55,7 @@ for lib in "$build"/lib/nimbus/plugins/*.so; do
   [[ -f $dir/$name ]] || fail "the out-of-tree build lacks $name (the in-tree build has it)"
   libs+=("$dir/$name")
 done
-(IFS='|'; "$cmake" "-DNM=$nm" "-DLIBS=${libs[*]}" -P "$src/tests/plugins/check_exports.cmake") ||
+(IFS='|'; "$cmake" "-DNM=$nm" "-DLIBS=${libs[*]}" -P "$src/tests/loader/check_exports.cmake") ||
   fail "an out-of-tree plugin exports more than the entry"
 
 export NIMBUS_PLUGIN_PATH=$dir
