@@ -14,7 +14,7 @@ RenderCheckpoint::RenderCheckpoint(const RenderJob &job, const std::string &inte
   info_.fingerprint = job.fingerprint(integrator_id, sampler_id);
 }
 
-Status RenderCheckpoint::restore_or_warn(Film &film, const Warn &warn) {
+Status RenderCheckpoint::restore_or_warn(Film &film, const MessageFn &warn) {
   if (resume_) {
     if (Status s = read_checkpoint(film, path_, info_); !s)
       return Error{"cannot resume: " + s.error().message};
@@ -42,7 +42,7 @@ Status RenderCheckpoint::save(const Film &film, uint64_t done) {
   return s;
 }
 
-void RenderCheckpoint::save_if_due(const Film &film, uint64_t done, const Warn &warn) {
+void RenderCheckpoint::save_if_due(const Film &film, uint64_t done, const MessageFn &warn) {
   if (interval_ <= 0 || done <= saved_ ||
       std::chrono::duration<double>(Clock::now() - last_save_).count() < interval_)
     return;

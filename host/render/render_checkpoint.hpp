@@ -5,28 +5,26 @@
 
 #include <chrono>
 #include <cstdint>
-#include <functional>
 #include <string>
 
 #include "core/expected.hpp"
 #include "film/checkpoint.hpp"
 #include "film/film.hpp"
 #include "render/render_job.hpp"
+#include "render/render_session.hpp"
 
 namespace nimbus {
 
 class RenderCheckpoint {
  public:
   using Clock = std::chrono::steady_clock;
-  // level: NIMBUS_LOG_*; the line is complete.
-  using Warn = std::function<void(int level, const std::string &line)>;
 
   // The checkpoint for `job` rendered by the bound plugins (their ids go into its fingerprint).
   RenderCheckpoint(const RenderJob &job, const std::string &integrator_id, const std::string &sampler_id);
 
   // Resuming: the film's sums, iteration count and non-finite count from the file (or why they cannot
   // be). Otherwise a warning through `warn` (if any) when a checkpoint is about to be replaced.
-  Status restore_or_warn(Film &film, const Warn &warn);
+  Status restore_or_warn(Film &film, const MessageFn &warn);
 
   // This session's iterations start at `t0`, with `done` iterations in the film.
   void start(uint64_t done, Clock::time_point t0);
@@ -36,7 +34,7 @@ class RenderCheckpoint {
 
   // Between iterations: saves when the interval has passed and the film holds unsaved iterations. A
   // failed periodic checkpoint costs only protection, not the render: it is a warning.
-  void save_if_due(const Film &film, uint64_t done, const Warn &warn);
+  void save_if_due(const Film &film, uint64_t done, const MessageFn &warn);
   // Saves when the film holds iterations the file lacks.
   Status save_if_behind(const Film &film, uint64_t done);
 
