@@ -58,7 +58,7 @@ struct EnvironmentLight {
   // than the nearest texel (photographed maps, shown as they are).
   bool bilinear = false;
   // A texel's radiance beside its sampling density in (u, v): an escaped ray looks up both (radiance,
-  // then the MIS pdf) and they share a cache line; on a 512x256 sky the two separate tables missed twice.
+  // then the MIS pdf), so they share a cache line where two separate tables would miss twice.
   struct Texel {
     Rgb radiance;
     float pdf_uv = 0;

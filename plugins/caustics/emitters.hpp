@@ -15,8 +15,9 @@
 //   area:  the host's uniform point on the emitter, then directions uniform in the cone from that point
 //          covering the target (cosine-weighted, as the host, from points inside the target).
 // Directions outside the cone have P_dir = 0: no merge technique exists for those paths and MIS gives
-// them to path tracing, so the image stays consistent. A small glass sphere 2 m from a point light
-// covers 1.5 % of its sphere of directions: the cone multiplies the photons that reach it by ~20-60.
+// them to path tracing, so the image stays consistent. A small glass object covers a small fraction of a
+// point light's sphere of directions: uniform emission would send most photons past it, the cone sends
+// them towards it.
 // Before the probe's target is known the target is the scene's bounding sphere (no cone for lights
 // inside it). Environment lights do not emit photons (v1: uniform and dim skies are PT's job, spec 6.2;
 // map pruning comes with light-selection adaptation), so their P_sel is 0 and no merge technique exists.

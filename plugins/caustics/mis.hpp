@@ -6,8 +6,8 @@
 //
 // Lookups happen at every rough camera vertex (spec 3.2 E2 with n_max unlimited, the paper's VCM
 // choice): with lookups at the first two only, paths with three or more rough vertices in front of a
-// caustic (e.g. pool floor -> wall -> floor -> water -> sun) had no merge technique at all and came from
-// rare BSDF hits of the sun alone, fireflies of radiance ~4e4.
+// caustic (e.g. pool floor -> wall -> floor -> water -> sun) would have no merge technique at all and
+// come from rare BSDF hits of the sun alone, as fireflies.
 //
 // Merge radius: r_s = r_a * kappa^(c_s - 1) with r_a the path's first-rough-vertex radius (spec 3.5) and
 // c_s the number of rough vertices among x_1 .. x_s: lookups behind a diffuse bounce see light that the
@@ -40,9 +40,9 @@ inline constexpr uint32_t kPhotonMaxVertices = 32;
 // Pending camera-side merge terms: a term at x_s' can only be a technique for paths with
 // k - s' <= D_photon, so at most D_photon + 1 terms are alive at once.
 inline constexpr uint32_t kMaxCameraTerms = kPhotonMaxVertices + 1;
-// kappa: growth of the merge radius per rough camera vertex after the first (see above). 1: measured at
-// 6 s on 640x360, kappa = 2 and 4 did not lower sphere-point's error (its error is in first-vertex
-// merges) and halved / sixth-ed the pool's iterations (lookups behind the floor find 4-16x the photons).
+// kappa: growth of the merge radius per rough camera vertex after the first (see above). 1: larger
+// radii do not lower the error, which sits in first-vertex merges, and make lookups behind the first
+// vertex find many more photons, for fewer iterations at equal time (docs/performance.md §6).
 inline constexpr float kRadiusGrowth = 1.0f;
 
 // The MIS exponent beta = 2 applied to one factor.

@@ -1,7 +1,7 @@
 // One photon pass (solver spec section 5): photon paths traced as host tasks into per-task chunks,
 // concatenated in task order (photon indices never depend on threads), and the photon map rebuilt. The
-// buffers keep their memory from pass to pass: allocated anew, their first touches (page faults) are a
-// large share of the map build.
+// buffers keep their memory from pass to pass, so a pass does not pay first-touch page faults on freshly
+// allocated pages.
 #pragma once
 
 #include <nimbus/nimbus.hpp>
