@@ -9,7 +9,6 @@
 
 #include <chrono>
 #include <cstring>
-#include <string>
 
 #include <nimbus/cpp/camera_path.hpp>
 
@@ -25,13 +24,16 @@ namespace {
 
 const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, "nimbus.host.tasks@1", nullptr};
 const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix", nullptr};
+const nimbus_option_decl_t kOptions[] = {
+    {"caustics", NIMBUS_OPTION_SWITCH, 0, "on", nullptr,
+     "caustics by photon merging; off renders exactly what nimbus.pt renders"}};
 
 class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, CausticsRecord> {
   using Base = sdk::CameraPathIntegrator<CausticsSolver, CausticsRecord>;
 
  public:
-  NIMBUS_DESCRIPTOR("nimbus.caustics", "Caustics solver (PT + selective photon merging, MIS)", "Nimbus",
-                    NIMBUS_KIND_INTEGRATOR, 1, 0, 0, kFeatures, kRequired)
+  NIMBUS_DESCRIPTOR_WITH_OPTIONS("nimbus.caustics", "Caustics solver (PT + selective photon merging, MIS)",
+                                 "Nimbus", NIMBUS_KIND_INTEGRATOR, 1, 0, 0, kFeatures, kRequired, kOptions)
 
   nimbus_status_t init() override {
     if (nimbus_status_t s = Base::init(); s != NIMBUS_OK) return s;
@@ -41,19 +43,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   }
 
   nimbus_status_t prepare(const nimbus_render_setup_t &setup) override {
-    enabled_ = true;
-    for (uint32_t i = 0; i < setup.option_count; ++i) {
-      const nimbus_option_t &o = setup.options[i];
-      if (o.key && o.value && std::strcmp(o.key, "caustics") == 0) {
-        const std::string v = o.value;
-        if (v == "off" || v == "false" || v == "no" || v == "0")
-          enabled_ = false;
-        else if (v == "on" || v == "true" || v == "yes" || v == "1")
-          enabled_ = true;
-        else
-          return NIMBUS_E_INVALID_ARG;
-      }
-    }
+    // The host validated the switch against kOptions (on or off); absent, it is the default.
+    const char *caustics = sdk::option_value(setup, "caustics");
+    enabled_ = !caustics || std::strcmp(caustics, "off") != 0;
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
     float center[3];
     scene_radius_ = services().scene->bounding_sphere(host().get(), center);

@@ -248,6 +248,15 @@ class Guide : public Plugin {
   }
 };
 
+// The value the host resolved for option `name` of a render (declared options always arrive, SDK 1.2),
+// or nullptr when the setup carries no such option.
+inline const char *option_value(const nimbus_render_setup_t &setup, const char *name) {
+  for (uint32_t i = 0; i < setup.option_count; ++i)
+    if (setup.options[i].key && setup.options[i].value && std::strcmp(setup.options[i].key, name) == 0)
+      return setup.options[i].value;
+  return nullptr;
+}
+
 namespace detail {
 
 template <class... Plugins>
@@ -318,6 +327,28 @@ struct Library {
                                           FEATURES,                                                         \
                                           REQUIRED};                                                        \
     return d;                                                                                               \
+  }
+
+// A static descriptor with declared options (SDK 1.2): OPTIONS names a `const nimbus_option_decl_t[]`
+// array of static storage, chained to the descriptor as a nimbus_option_list_t.
+#define NIMBUS_DESCRIPTOR_WITH_OPTIONS(ID, NAME, VENDOR, KIND, MAJOR, MINOR, PATCH, FEATURES, REQUIRED,   \
+                                       OPTIONS)                                                           \
+  static const nimbus_descriptor_t &descriptor() {                                                        \
+    static const nimbus_option_list_t list = {                                                            \
+        {sizeof(nimbus_option_list_t), NIMBUS_S_TYPE_OPTION_LIST, nullptr},                               \
+        uint32_t(sizeof(OPTIONS) / sizeof(OPTIONS[0])),                                                   \
+        0,                                                                                                \
+        OPTIONS};                                                                                         \
+    static const nimbus_descriptor_t d = {{sizeof(nimbus_descriptor_t), NIMBUS_S_TYPE_DESCRIPTOR, &list}, \
+                                          ID,                                                             \
+                                          NAME,                                                           \
+                                          VENDOR,                                                         \
+                                          {MAJOR, MINOR, PATCH, 0},                                       \
+                                          KIND,                                                           \
+                                          0,                                                              \
+                                          FEATURES,                                                       \
+                                          REQUIRED};                                                      \
+    return d;                                                                                             \
   }
 
 #endif /* NIMBUS_NIMBUS_HPP */
