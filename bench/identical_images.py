@@ -63,7 +63,8 @@ import sys
 import tempfile
 import time
 
-from nimbus_tools import read_exr
+from exr_compare import compare_images
+from nimbus_tools import plugin_dir, remove_render_outputs
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RENDER_TIMEOUT = 1800  # seconds; a render that takes longer is reported as FAILED
@@ -73,12 +74,6 @@ PROBE_ELEMENT = "nimbus_probe_no_such_element"
 PT_ELEMENTS = ["albedo", "depth", "direct", "emission", "indirect", "lightmix", "normal"]
 STATIC_ELEMENTS = {"pt": PT_ELEMENTS, "caustics": PT_ELEMENTS + ["caustics", "caustics_merge"],
                    "lt": ["lightmix"]}
-STRUCTURAL_ATTRIBUTES = {"channels", "dataWindow", "chunkCount", "name", "type", "version"}
-
-
-def is_timing_attribute(name):
-    lower = name.lower()
-    return "seconds" in lower or "date" in lower or "time" in lower or lower == "utcoffset"
 
 
 class Build:
@@ -91,7 +86,7 @@ class Build:
         if not os.access(self.exe, os.X_OK):
             sys.exit(f"{label}: no nimbus executable at {self.exe}")
         self.root = os.path.dirname(os.path.dirname(self.exe))
-        self.plugin_dir = os.path.join(self.root, "lib", "nimbus", "plugins")
+        self.plugin_dir = plugin_dir(self.exe)
         self.env = dict(os.environ)
         self.env.pop("NIMBUS_PLUGIN_PATH", None)
         if os.path.isdir(self.plugin_dir):
@@ -239,82 +234,6 @@ def render(build, scene, out, args, seed, extra, variant_args):
     return None, seconds
 
 
-# --- Comparing ---------------------------------------------------------------------------------------
-
-def describe_channel(spec):
-    ptype, xs, ys = spec
-    text = {0: "uint", 1: "half", 2: "float"}.get(ptype, f"type {ptype}")
-    return text if (xs, ys) == (1, 1) else f"{text} sampled {xs}x{ys}"
-
-
-def compare_images(old_path, new_path):
-    """(identical, details, notes) of two EXRs, bit for bit."""
-    import numpy as np
-    old, new = read_exr(old_path), read_exr(new_path)
-    if len(old) != len(new):
-        return False, f"{len(old)} parts in OLD, {len(new)} in NEW", []
-    problems, notes = [], []
-    pixels = channels = total_channels = 0
-    max_abs, nonfinite = 0.0, 0
-    differing = []
-    for index, (a, b) in enumerate(zip(old, new)):
-        where = f"part {index} " if len(old) > 1 else ""
-        if a.name != b.name:
-            problems.append(f"{where}named {a.name!r} in OLD, {b.name!r} in NEW")
-        if a.data_window != b.data_window:
-            problems.append(f"{where}data window {a.data_window} in OLD, {b.data_window} in NEW")
-            continue
-        ca, cb = {c[0]: c[1:] for c in a.channels}, {c[0]: c[1:] for c in b.channels}
-        only_old, only_new = sorted(set(ca) - set(cb)), sorted(set(cb) - set(ca))
-        if only_old or only_new:
-            problems.append(f"{where}channels only in OLD: {', '.join(only_old) or '-'}; "
-                            f"only in NEW: {', '.join(only_new) or '-'}")
-        xmin, ymin, xmax, ymax = a.data_window
-        mask = np.zeros((ymax - ymin + 1, xmax - xmin + 1), dtype=bool)
-        retyped = []
-        for name in sorted(set(ca) & set(cb)):
-            total_channels += 1
-            if ca[name] != cb[name]:
-                retyped.append(f"{name} {describe_channel(ca[name])} -> {describe_channel(cb[name])}")
-                continue
-            bits_a, bits_b = a.pixels[name], b.pixels[name]
-            diff = bits_a != bits_b
-            if not diff.any():
-                continue
-            channels += 1
-            differing.append(name if len(old) == 1 else f"{index}:{name}")
-            if diff.shape == mask.shape:
-                mask |= diff
-            else:  # a subsampled channel: its own samples count
-                pixels += int(diff.sum())
-            va = a.values(name)[diff].astype(np.float64)
-            vb = b.values(name)[diff].astype(np.float64)
-            d = np.abs(va - vb)
-            finite = np.isfinite(d)
-            nonfinite += int((~finite).sum())
-            if finite.any():
-                max_abs = max(max_abs, float(d[finite].max()))
-        pixels += int(mask.sum())
-        if retyped:
-            problems.append(f"{where}{len(retyped)} channels change type or sampling ({', '.join(retyped[:4])}"
-                            + (", ...)" if len(retyped) > 4 else ")"))
-        for key in sorted(set(a.attributes) | set(b.attributes)):
-            if key in STRUCTURAL_ATTRIBUTES or is_timing_attribute(key):
-                continue
-            va = a.attribute_text(key) if key in a.attributes else "(absent)"
-            vb = b.attribute_text(key) if key in b.attributes else "(absent)"
-            if va != vb:
-                notes.append(f"{where}header {key}: {va} in OLD, {vb} in NEW")
-    if channels:
-        shown = ", ".join(differing[:8]) + (", ..." if len(differing) > 8 else "")
-        text = (f"{pixels} pixels differ in {channels} of {total_channels} channels ({shown}), "
-                f"max abs difference {max_abs:.6g}")
-        if nonfinite:
-            text += f", {nonfinite} samples NaN/inf on one side or with other NaN bits"
-        problems.insert(0, text)
-    return not problems, "; ".join(problems), notes
-
-
 # --- Main --------------------------------------------------------------------------------------------
 
 def main():
@@ -410,10 +329,7 @@ def main():
                     detail = (detail + "; " if detail else "") + "note: " + "; ".join(notes)
                 if same and temporary:
                     for p in paths.values():
-                        os.remove(p)
-                        png = os.path.splitext(p)[0] + ".png"
-                        if os.path.exists(png):
-                            os.remove(png)
+                        remove_render_outputs(p)
             if status == "IDENTICAL":
                 passed += 1
             else:

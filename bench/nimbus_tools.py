@@ -1,5 +1,6 @@
 """Helpers shared by the benchmark scripts in bench/: running a command, reading a render's metadata,
-swapping builds of one plugin library, reading an EXR's pixels bit for bit (read_exr, needs numpy)."""
+finding a build's plugin directory, removing a render's files, swapping builds of one plugin library,
+reading an EXR's pixels bit for bit (read_exr, needs numpy)."""
 import os
 import shutil
 import struct
@@ -31,6 +32,18 @@ def exr_metadata(path):
     return meta
 
 
+def plugin_dir(nimbus):
+    """The plugin directory of the build (a build tree or an install prefix) that holds bin/nimbus."""
+    return os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(nimbus))), "lib", "nimbus", "plugins")
+
+
+def remove_render_outputs(out):
+    """Removes the files a render to `out` leaves: the image, its checkpoint and its PNG preview."""
+    for path in (out, out + ".ckpt", os.path.splitext(out)[0] + ".png"):
+        if os.path.exists(path):
+            os.remove(path)
+
+
 def add_ab_arguments(ap, what):
     """The arguments of the side-by-side scripts: scenes, the two builds of `what`, iterations, runs."""
     ap.add_argument("scenes", nargs="+")
@@ -50,8 +63,7 @@ class PluginSwap:
     """
 
     def __init__(self, nimbus, library, builds):
-        root = os.path.dirname(os.path.dirname(os.path.abspath(nimbus)))
-        self.plugin = os.path.join(root, "lib", "nimbus", "plugins", library)
+        self.plugin = os.path.join(plugin_dir(nimbus), library)
         self.builds = builds
         self.tmp = None
         self.libs = {}
