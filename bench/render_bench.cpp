@@ -14,7 +14,7 @@
 #include <nimbus/cpp/sampling.hpp>
 #include "abi/host_services.hpp"
 #include "core/hash.hpp"
-#include "render/plugin_registry.hpp"
+#include "loader/plugin_registry.hpp"
 #include "render/render_context.hpp"
 #include "render/render_session.hpp"
 #include "scene/scene_parser.hpp"

@@ -4,8 +4,8 @@
 
 #include "abi/host_services.hpp"
 #include "cli/commands.hpp"
-#include "render/plugin_descriptor.hpp"
-#include "render/plugin_registry.hpp"
+#include "loader/plugin_descriptor.hpp"
+#include "loader/plugin_registry.hpp"
 
 namespace nimbus::cli {
 namespace {

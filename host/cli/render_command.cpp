@@ -17,7 +17,7 @@
 #include "abi/host_services.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress_display.hpp"
-#include "render/plugin_registry.hpp"
+#include "loader/plugin_registry.hpp"
 #include "render/render_session.hpp"
 #include "scene/scene_parser.hpp"
 

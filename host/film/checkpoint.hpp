@@ -14,13 +14,12 @@
 //   fingerprint  string
 //   elements     u32       count, then per active element (film order, beauty first):
 //                            name string, channels u32, width * height * channels f64 sums
-//   checksum     u64       of every byte before it (see checkpoint.cpp), so corruption is detected
+//   checksum     u64       of every byte before it (core/checksum.hpp), so corruption is detected
 //                          rather than resumed from
 #pragma once
 
 #include <cstdint>
 #include <string>
-#include <string_view>
 
 #include "core/expected.hpp"
 #include "film/film.hpp"
@@ -56,8 +55,5 @@ Status read_checkpoint(Film &film, const std::string &path, CheckpointInfo &info
 // The header alone (iterations, seed, fingerprint, integrator, seconds), without validating the data: to
 // report what a checkpoint holds before deciding to resume or replace it.
 Expected<CheckpointInfo> peek_checkpoint(const std::string &path);
-
-// 16 hex digits of the checksum checkpoints use, for fingerprinting content (e.g. the scene file's bytes).
-std::string content_hash(std::string_view bytes);
 
 }  // namespace nimbus

@@ -12,9 +12,11 @@
 #include <tbb/parallel_for.h>
 
 #include "abi/host_services.hpp"
+#include "core/checksum.hpp"
 #include "film/checkpoint.hpp"
-#include "render/plugin_interface.hpp"
-#include "render/plugin_registry.hpp"
+#include "loader/plugin_interface.hpp"
+#include "loader/plugin_registry.hpp"
+#include "loader/plugin_status.hpp"
 #include "render/render_context.hpp"
 
 namespace nimbus {
@@ -27,24 +29,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// A plugin instance owned for the duration of the render.
-struct PluginHandle {
-  PluginRegistry *registry = nullptr;
-  const nimbus_plugin_t *plugin = nullptr;
-  PluginHandle() = default;
-  PluginHandle(const PluginHandle &) = delete;
-  PluginHandle &operator=(const PluginHandle &) = delete;
-  ~PluginHandle() {
-    if (plugin) registry->destroy(plugin);
-  }
-};
-
-bool has_feature(const nimbus_descriptor_t *d, const char *feature) {
-  for (const char *const *f = d->features; f && *f; ++f)
-    if (std::string_view(*f) == feature) return true;
-  return false;
 }
 
 // Film element names of the LightMix groups: "lightmix." + the group name in [a-z0-9_], unique.
@@ -95,25 +79,6 @@ std::string render_fingerprint(const SceneDesc &desc, const RenderOptions &optio
   return lines;
 }
 
-std::string status_text(nimbus_status_t s) {
-  switch (s) {
-    case NIMBUS_E_INVALID_ARG:
-      return "invalid argument";
-    case NIMBUS_E_UNSUPPORTED:
-      return "unsupported";
-    case NIMBUS_E_NO_MEMORY:
-      return "out of memory";
-    case NIMBUS_E_VERSION:
-      return "version mismatch";
-    case NIMBUS_E_CANCELLED:
-      return "cancelled";
-    case NIMBUS_E_INTERNAL:
-      return "internal error";
-    default:
-      return "status " + std::to_string(s);
-  }
-}
-
 }  // namespace
 
 Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &options,
@@ -137,26 +102,24 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   const nimbus_host_t *host = services.host();
 
   // Plugins: the integrator the scene names and the light sampler.
-  PluginHandle integrator, sampler;
-  auto ip = registry.create(desc->render.integrator, NIMBUS_KIND_INTEGRATOR, host);
+  auto ip = registry.instantiate(desc->render.integrator, NIMBUS_KIND_INTEGRATOR, host);
   if (!ip) return Error{desc->path + ": integrator: " + ip.error().message};
-  integrator.registry = &registry, integrator.plugin = ip.value();
+  PluginHandle integrator = std::move(ip).value();
   const std::string sampler_id = !options.light_sampler.empty()             ? options.light_sampler
                                  : !desc->render.light_sampler.empty()      ? desc->render.light_sampler
                                  : ctx.lights.count() > kTreeLightThreshold ? "nimbus.lights.tree"
                                                                             : "nimbus.lights.power";
-  auto sp = registry.create(sampler_id, NIMBUS_KIND_LIGHT_SAMPLER, host);
+  auto sp = registry.instantiate(sampler_id, NIMBUS_KIND_LIGHT_SAMPLER, host);
   if (!sp) return Error{"light sampler: " + sp.error().message};
-  sampler.registry = &registry, sampler.plugin = sp.value();
-  auto iface =
-      interface_of<nimbus_integrator_v1_t>(integrator.plugin, NIMBUS_IFACE_INTEGRATOR, kIntegratorSize10);
+  PluginHandle sampler = std::move(sp).value();
+  auto iface = interface_of<nimbus_integrator_v1_t>(integrator, NIMBUS_IFACE_INTEGRATOR, kIntegratorSize10);
   if (!iface) return iface.error();
-  auto siface = interface_of<nimbus_light_sampler_v1_t>(sampler.plugin, NIMBUS_IFACE_LIGHT_SAMPLER,
-                                                        kLightSamplerMinSize);
+  auto siface =
+      interface_of<nimbus_light_sampler_v1_t>(sampler, NIMBUS_IFACE_LIGHT_SAMPLER, kLightSamplerMinSize);
   if (!siface) return siface.error();
   const nimbus_integrator_v1_t &it = *iface.value();
   const nimbus_light_sampler_v1_t &ls = *siface.value();
-  const std::string integrator_id = integrator.plugin->desc->id;
+  const std::string integrator_id = integrator.id();
 
   // Prepare: the sampler builds its tables, the integrator registers its elements; then the film
   // allocates exactly what was requested.
@@ -166,9 +129,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   scene_info.worker_count = ctx.worker_count;
   ctx.geometry->sphere_center().store(scene_info.scene_center);
   scene_info.scene_radius = ctx.geometry->sphere_radius();
-  if (nimbus_status_t s = ls.prepare(sampler.plugin, &scene_info); s != NIMBUS_OK)
-    return Error{"light sampler '" + std::string(sampler.plugin->desc->id) +
-                 "' failed to prepare: " + status_text(s)};
+  if (nimbus_status_t s = ls.prepare(sampler.get(), &scene_info); s != NIMBUS_OK)
+    return Error{"light sampler '" + sampler.id() + "' failed to prepare: " + status_text(s)};
 
   std::vector<nimbus_option_t> opts;
   for (const auto &[k, v] : desc->render.options) opts.push_back({k.c_str(), v.c_str()});
@@ -180,9 +142,9 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   setup.option_count = uint32_t(opts.size());
   setup.seed = desc->render.seed;
   setup.options = opts.data();
-  setup.light_sampler = sampler.plugin;
+  setup.light_sampler = sampler.get();
   setup.light_sampler_iface = &ls;
-  if (nimbus_status_t s = it.prepare(integrator.plugin, &setup); s != NIMBUS_OK)
+  if (nimbus_status_t s = it.prepare(integrator.get(), &setup); s != NIMBUS_OK)
     return Error{"integrator '" + integrator_id + "' failed to prepare: " + status_text(s)};
 
   Film &film = *ctx.film;
@@ -194,7 +156,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
       else
         film.request(e);
     }
-  if (lightmix && !has_feature(integrator.plugin->desc, "lightmix"))
+  if (lightmix && !integrator.record().has_feature("lightmix"))
     return Error{"integrator '" + integrator_id +
                  "' does not produce LightMix layers (no \"lightmix\" feature)"};
   if (lightmix) {
@@ -215,7 +177,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   CheckpointInfo checkpoint;
   checkpoint.seed = desc->render.seed;
   checkpoint.integrator = integrator_id;
-  checkpoint.fingerprint = render_fingerprint(*desc, options, integrator_id, sampler.plugin->desc->id);
+  checkpoint.fingerprint = render_fingerprint(*desc, options, integrator_id, sampler.id());
   if (options.resume) {
     if (Status s = read_checkpoint(film, checkpoint_path, checkpoint); !s)
       return Error{"cannot resume: " + s.error().message};
@@ -257,7 +219,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   info.worker_count = ctx.worker_count;
   info.first_iteration = film.iterations() + 1;
   info.planned_iterations = iterations;
-  if (nimbus_status_t s = it.begin_render(integrator.plugin, &info); s != NIMBUS_OK)
+  if (nimbus_status_t s = it.begin_render(integrator.get(), &info); s != NIMBUS_OK)
     return Error{"integrator '" + integrator_id + "' failed to begin the render: " + status_text(s)};
 
   // Tiles in row-major order over the render region; each is rendered by one worker per iteration.
@@ -304,7 +266,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
     }
     const uint64_t i = done + 1;
     ctx.iteration = i;
-    if (nimbus_status_t s = it.begin_iteration(integrator.plugin, i); s != NIMBUS_OK) {
+    if (nimbus_status_t s = it.begin_iteration(integrator.get(), i); s != NIMBUS_OK) {
       failure = s, failure_hook = "begin_iteration";
       break;
     }
@@ -316,7 +278,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
             sizeof(nimbus_thread_ctx_t), uint32_t(wi < 0 ? 0 : wi), ctx.worker_count, 0, nullptr, 0};
         nimbus_tile_t tile = tiles[t];
         tile.iteration = i;
-        if (nimbus_status_t s = it.render_tile(integrator.plugin, &tc, &tile); s != NIMBUS_OK) {
+        if (nimbus_status_t s = it.render_tile(integrator.get(), &tc, &tile); s != NIMBUS_OK) {
           nimbus_status_t expected = NIMBUS_OK;
           tile_status.compare_exchange_strong(expected, s);
         }
@@ -329,8 +291,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
     film.merge_splats();
     // Optional: a sampler's table may end before end_iteration (kLightSamplerMinSize).
     if (NIMBUS_HAS_MEMBER(&ls, nimbus_light_sampler_v1_t, end_iteration) && ls.end_iteration)
-      ls.end_iteration(sampler.plugin, i);
-    if (nimbus_status_t s = it.end_iteration(integrator.plugin, i); s != NIMBUS_OK) {
+      ls.end_iteration(sampler.get(), i);
+    if (nimbus_status_t s = it.end_iteration(integrator.get(), i); s != NIMBUS_OK) {
       failure = s, failure_hook = "end_iteration";
       break;
     }
@@ -358,7 +320,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   }
   const double seconds = seconds_since(t0);
   const bool was_cancelled = cancel.load();
-  it.end_render(integrator.plugin,
+  it.end_render(integrator.get(),
                 failure != NIMBUS_OK ? failure : (was_cancelled ? NIMBUS_E_CANCELLED : NIMBUS_OK));
 
   // Write what we have, whatever ended the loop. The checkpoint goes first, so that an image write that
@@ -379,7 +341,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   std::vector<std::pair<std::string, std::string>> smeta = {
       {"version", NIMBUS_VERSION_STRING},
       {"integrator", integrator_id},
-      {"light_sampler", sampler.plugin->desc->id},
+      {"light_sampler", sampler.id()},
       {"scene", desc->path},
       {"seed", std::to_string(desc->render.seed)},  // exact for any 64-bit seed
       {"stopped_by", failure != NIMBUS_OK                 ? "error"
@@ -408,8 +370,8 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   if (!checkpointed)
     return Error{checkpointed.error().message + " (the image was written to " + result.exr_path + ")"};
   if (failure != NIMBUS_OK)
-    return Error{"integrator '" + integrator_id + "' failed in " + failure_hook + " (" +
-                 status_text(failure) + "); the image so far (" + std::to_string(done) +
+    return Error{"integrator '" + integrator_id + "' failed in " + failure_hook + ": " +
+                 status_text(failure) + "; the image so far (" + std::to_string(done) +
                  " iterations) was written to " + result.exr_path};
   return result;
 }

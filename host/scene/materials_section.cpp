@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "materials/metals.hpp"
+#include "scene/metals.hpp"
 #include "scene/sections.hpp"
 
 namespace nimbus::scene_yaml {

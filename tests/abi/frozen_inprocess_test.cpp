@@ -5,7 +5,7 @@
 
 #include "abi/host_services.hpp"
 #include "abi_test_support.hpp"
-#include "render/plugin_registry.hpp"
+#include "loader/plugin_registry.hpp"
 
 namespace nimbus::abi_test {
 namespace {

@@ -5,9 +5,9 @@
 
 #include "abi/host_services.hpp"
 #include "abi_test_support.hpp"
-#include "render/plugin_interface.hpp"
-#include "render/plugin_registry.hpp"
-#include "render/plugin_version.hpp"
+#include "loader/plugin_interface.hpp"
+#include "loader/plugin_registry.hpp"
+#include "loader/plugin_version.hpp"
 
 namespace nimbus::abi_test {
 namespace {
@@ -36,7 +36,8 @@ TEST_F(FrozenIntegratorTable, Abi10IntegratorPassesTheHostCheck) {
   auto created = registry_.create("org.nimbus.abi.direct", NIMBUS_KIND_INTEGRATOR, host_.host());
   ASSERT_TRUE(created) << created.error().message;
   const nimbus_plugin_t *p = created.value();
-  auto t = interface_of<nimbus_integrator_v1_t>(p, NIMBUS_IFACE_INTEGRATOR, kIntegratorSize10);
+  auto t = interface_of<nimbus_integrator_v1_t>(p, "org.nimbus.abi.direct", NIMBUS_IFACE_INTEGRATOR,
+                                                kIntegratorSize10);
   ASSERT_TRUE(t) << t.error().message;
   EXPECT_EQ(t.value()->struct_size, kIntegratorSize10) << "the fixture's table is the 1.0 size";
   registry_.destroy(p);
@@ -70,7 +71,8 @@ const nimbus_plugin_t kShortPlugin = {
     }};
 
 TEST(TableSizes, ShorterThan10IsRefusedWithBothSizes) {
-  auto t = interface_of<nimbus_integrator_v1_t>(&kShortPlugin, NIMBUS_IFACE_INTEGRATOR, kIntegratorSize10);
+  auto t = interface_of<nimbus_integrator_v1_t>(&kShortPlugin, kShortDesc.id, NIMBUS_IFACE_INTEGRATOR,
+                                                kIntegratorSize10);
   ASSERT_FALSE(t);
   EXPECT_EQ(t.error().message,
             "plugin 'org.nimbus.test.short': nimbus.iface.integrator@1 table is too small (48 bytes; SDK 1.0 "
@@ -78,7 +80,7 @@ TEST(TableSizes, ShorterThan10IsRefusedWithBothSizes) {
 }
 
 TEST(TableSizes, MissingInterfaceIsNamed) {
-  auto t = interface_of<nimbus_light_sampler_v1_t>(&kShortPlugin, NIMBUS_IFACE_LIGHT_SAMPLER,
+  auto t = interface_of<nimbus_light_sampler_v1_t>(&kShortPlugin, kShortDesc.id, NIMBUS_IFACE_LIGHT_SAMPLER,
                                                    kLightSamplerMinSize);
   ASSERT_FALSE(t);
   EXPECT_EQ(t.error().message,

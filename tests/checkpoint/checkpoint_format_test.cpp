@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "checkpoint_fixture.hpp"
+#include "core/checksum.hpp"
 #include "e2e_support.hpp"
 
 namespace nimbus {

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "materials/bsdf.hpp"
-#include "materials/metals.hpp"
+#include "scene/metals.hpp"
 #include "scene/scene_desc.hpp"
 
 namespace nimbus {

@@ -6,8 +6,8 @@
 #include <complex>
 
 #include "chi_square.hpp"
-#include "materials/metals.hpp"
 #include "materials/scattering.hpp"
+#include "scene/metals.hpp"
 #include "test_helpers.hpp"
 
 namespace nimbus::test {

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "materials/metals.hpp"
+#include "scene/metals.hpp"
 
 namespace nimbus::test {
 

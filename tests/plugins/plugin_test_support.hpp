@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "render/plugin_registry.hpp"
+#include "loader/plugin_registry.hpp"
 
 namespace nimbus::test {
 

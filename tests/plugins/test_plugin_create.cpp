@@ -71,7 +71,8 @@ TEST_F(PluginCreate, WrongKindIsAnError) {
 TEST_F(PluginCreate, InstanceInitFailureIsReportedAndTheInstanceDestroyed) {
   auto created = registry_->create("org.nimbus.test.badinit", NIMBUS_KIND_INTEGRATOR, host_.get());
   ASSERT_FALSE(created);
-  EXPECT_EQ(created.error().message, "plugin 'org.nimbus.test.badinit' failed to initialise (status -6)");
+  EXPECT_EQ(created.error().message,
+            "plugin 'org.nimbus.test.badinit' failed to initialise: internal error (status -6)");
   EXPECT_EQ(markers_.lifecycle("plugin_init_fails"), (Events{"init", "create", "plugin-init", "destroy"}));
 }
 

@@ -1,8 +1,8 @@
 // Descriptor validation and "id@rev" parsing, on descriptors built in memory.
 #include <gtest/gtest.h>
 
+#include "loader/plugin_descriptor.hpp"
 #include "plugin_test_support.hpp"
-#include "render/plugin_descriptor.hpp"
 
 namespace nimbus {
 namespace {

@@ -160,7 +160,7 @@ TEST_F(PluginDiscovery, RefusesATextFileNamedSo) {
 
 TEST_F(PluginDiscovery, RefusesWhenInitFailsAndDoesNotDeinit) {
   const auto &rec = only_record({"init_fails"});
-  expect_refused(rec, fixture_lib("init_fails", "init_fails"), "init failed with status -6");
+  expect_refused(rec, fixture_lib("init_fails", "init_fails"), "init failed: internal error (status -6)");
   EXPECT_EQ(markers_.lifecycle("init_fails"), Events{"init"});
   registry_.reset();
   EXPECT_EQ(markers_.lifecycle("init_fails"), Events{"init"});

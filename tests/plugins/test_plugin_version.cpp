@@ -2,7 +2,7 @@
 // statement of the rule, plus the exact wording of each refusal.
 #include <gtest/gtest.h>
 
-#include "render/plugin_version.hpp"
+#include "loader/plugin_version.hpp"
 
 namespace nimbus {
 namespace {

@@ -1,7 +1,7 @@
 // Good scenes: what is written lands in SceneDesc, and what is omitted keeps the documented defaults.
 #include <gtest/gtest.h>
 
-#include "materials/metals.hpp"
+#include "scene/metals.hpp"
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {

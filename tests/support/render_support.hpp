@@ -13,7 +13,7 @@
 #include <nimbus/cpp/math.hpp>
 #include "abi/host_services.hpp"
 #include "film/image_read.hpp"
-#include "render/plugin_registry.hpp"
+#include "loader/plugin_registry.hpp"
 #include "render/render_session.hpp"
 #include "scene/scene_parser.hpp"
 

@@ -10,6 +10,8 @@
 #include <map>
 #include <set>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/expected.hpp"
@@ -30,7 +32,11 @@ struct PluginRecord {
   nimbus_version_t version{};
   std::vector<std::string> features;
   std::vector<std::string> required_services;
+
+  bool has_feature(std::string_view feature) const;
 };
+
+class PluginHandle;
 
 class PluginRegistry {
  public:
@@ -69,6 +75,9 @@ class PluginRegistry {
   Expected<const nimbus_plugin_t *> create(const std::string &id, nimbus_plugin_kind_t expected_kind,
                                            const nimbus_host_t *host);
   void destroy(const nimbus_plugin_t *plugin);
+  // create() with the instance owned by the handle, which also carries the validated descriptor copy.
+  Expected<PluginHandle> instantiate(const std::string &id, nimbus_plugin_kind_t expected_kind,
+                                     const nimbus_host_t *host);
 
   // Calls deinit once for each library whose init succeeded and that was kept; never dlcloses (1.x).
   // Instances must have been destroyed first. Idempotent.
@@ -99,6 +108,41 @@ class PluginRegistry {
   std::set<std::string> seen_files_;       // canonical paths
   std::map<void *, std::string> handles_;  // dlopen handle -> path it was first opened as
   std::vector<const nimbus_plugin_t *> live_;
+};
+
+// A plugin instance, destroyed through its registry when the handle goes (the registry must outlive it),
+// and the loader's validated copy of its descriptor: the host reads the id and features from the copy,
+// never again from the plugin's own descriptor.
+class PluginHandle {
+ public:
+  PluginHandle() = default;
+  PluginHandle(PluginRegistry &registry, const nimbus_plugin_t *plugin, PluginRecord record)
+      : registry_(&registry), plugin_(plugin), record_(std::move(record)) {}
+  PluginHandle(PluginHandle &&other) noexcept { *this = std::move(other); }
+  PluginHandle &operator=(PluginHandle &&other) noexcept {
+    if (this != &other) {
+      reset();
+      registry_ = std::exchange(other.registry_, nullptr);
+      plugin_ = std::exchange(other.plugin_, nullptr);
+      record_ = std::move(other.record_);
+    }
+    return *this;
+  }
+  ~PluginHandle() { reset(); }
+
+  const nimbus_plugin_t *get() const { return plugin_; }
+  const PluginRecord &record() const { return record_; }
+  const std::string &id() const { return record_.id; }
+
+ private:
+  void reset() {
+    if (plugin_) registry_->destroy(plugin_);
+    plugin_ = nullptr;
+  }
+
+  PluginRegistry *registry_ = nullptr;
+  const nimbus_plugin_t *plugin_ = nullptr;
+  PluginRecord record_;
 };
 
 }  // namespace nimbus

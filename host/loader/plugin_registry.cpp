@@ -1,13 +1,14 @@
-#include "render/plugin_registry.hpp"
+#include "loader/plugin_registry.hpp"
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
 
-#include "render/plugin_descriptor.hpp"
-#include "render/plugin_library.hpp"
-#include "render/plugin_version.hpp"
+#include "loader/plugin_descriptor.hpp"
+#include "loader/plugin_library.hpp"
+#include "loader/plugin_status.hpp"
+#include "loader/plugin_version.hpp"
 
 namespace nimbus {
 namespace fs = std::filesystem;
@@ -29,9 +30,11 @@ bool is_shared_object_name(const fs::path &p) {
   return name.size() > 3 && name.ends_with(".so");
 }
 
-std::string status_text(nimbus_status_t s) { return "status " + std::to_string(s); }
-
 }  // namespace
+
+bool PluginRecord::has_feature(std::string_view feature) const {
+  return std::find(features.begin(), features.end(), feature) != features.end();
+}
 
 PluginRegistry::PluginRegistry(LogSink sink) : sink_(sink ? std::move(sink) : LogSink(stderr_sink)) {}
 
@@ -95,7 +98,7 @@ void PluginRegistry::load_file(const std::string &path, const nimbus_host_t *hos
   const nimbus_entry_t *entry = opened.entry;
   const nimbus_status_t init = entry->init(path.c_str());
   if (init != NIMBUS_OK) {
-    refuse(std::move(base), "init failed with " + status_text(init));
+    refuse(std::move(base), "init failed: " + status_text(init));
     return;
   }
   const Library lib{path, opened.handle, entry};
@@ -201,7 +204,7 @@ Expected<const nimbus_plugin_t *> PluginRegistry::create(const std::string &id,
 
   const nimbus_plugin_t *plugin = nullptr;
   const nimbus_status_t created = entry->create(rec->id.c_str(), host, &plugin);
-  if (created != NIMBUS_OK) return Error{who + " could not be created (" + status_text(created) + ")"};
+  if (created != NIMBUS_OK) return Error{who + " could not be created: " + status_text(created)};
   if (plugin == nullptr) return Error{who + " could not be created (create returned no instance)"};
   const bool can_destroy = NIMBUS_HAS_MEMBER(plugin, nimbus_plugin_t, destroy) && plugin->destroy != nullptr;
   if (plugin->struct_size < kPluginSize10 || plugin->init == nullptr || plugin->get_interface == nullptr ||
@@ -213,10 +216,17 @@ Expected<const nimbus_plugin_t *> PluginRegistry::create(const std::string &id,
   const nimbus_status_t init = plugin->init(plugin);
   if (init != NIMBUS_OK) {
     plugin->destroy(plugin);
-    return Error{who + " failed to initialise (" + status_text(init) + ")"};
+    return Error{who + " failed to initialise: " + status_text(init)};
   }
   live_.push_back(plugin);
   return plugin;
+}
+
+Expected<PluginHandle> PluginRegistry::instantiate(const std::string &id, nimbus_plugin_kind_t expected_kind,
+                                                   const nimbus_host_t *host) {
+  auto created = create(id, expected_kind, host);
+  if (!created) return created.error();
+  return PluginHandle(*this, created.value(), *find(id));
 }
 
 void PluginRegistry::destroy(const nimbus_plugin_t *plugin) {

@@ -1,10 +1,10 @@
-#include "render/plugin_library.hpp"
+#include "loader/plugin_library.hpp"
 
 #include <dlfcn.h>
 
 #include <cstddef>
 
-#include "render/plugin_version.hpp"
+#include "loader/plugin_version.hpp"
 
 namespace nimbus {
 namespace {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/expected.hpp"
+#include "loader/plugin_registry.hpp"
 
 namespace nimbus {
 
@@ -28,17 +29,24 @@ inline constexpr size_t kLightSamplerMinSize = offsetof(nimbus_light_sampler_v1_
 static_assert(kIntegratorSize10 == 56 && kLightSamplerMinSize == 40);
 #endif
 
-// Interface `iface` at revision 1 of `plugin`, or an error naming the plugin, the interface and both
-// sizes when the plugin lacks it or its table is smaller than `min_size` bytes.
+// Interface `iface` at revision 1 of `plugin`, or an error naming the plugin (by `id`, the validated
+// descriptor's), the interface and both sizes when the plugin lacks it or its table is smaller than
+// `min_size` bytes.
 template <class Table>
-Expected<const Table *> interface_of(const nimbus_plugin_t *plugin, const char *iface, size_t min_size) {
+Expected<const Table *> interface_of(const nimbus_plugin_t *plugin, const std::string &id, const char *iface,
+                                     size_t min_size) {
   const auto *t = static_cast<const Table *>(plugin->get_interface(plugin, iface, 1));
-  const std::string who = std::string("plugin '") + plugin->desc->id + "'";
+  const std::string who = "plugin '" + id + "'";
   if (!t) return Error{who + " does not provide " + iface + "@1"};
   if (t->struct_size < min_size)
     return Error{who + ": " + iface + "@1 table is too small (" + std::to_string(t->struct_size) +
                  " bytes; SDK 1.0 tables have at least " + std::to_string(min_size) + ")"};
   return t;
+}
+
+template <class Table>
+Expected<const Table *> interface_of(const PluginHandle &plugin, const char *iface, size_t min_size) {
+  return interface_of<Table>(plugin.get(), plugin.id(), iface, min_size);
 }
 
 }  // namespace nimbus

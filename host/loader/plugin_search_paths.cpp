@@ -6,7 +6,7 @@
 #include <string_view>
 #include <system_error>
 
-#include "render/plugin_registry.hpp"
+#include "loader/plugin_registry.hpp"
 
 namespace nimbus {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "render/plugin_version.hpp"
+#include "loader/plugin_version.hpp"
 
 namespace nimbus {
 

@@ -1,4 +1,4 @@
-#include "render/plugin_descriptor.hpp"
+#include "loader/plugin_descriptor.hpp"
 
 #include <charconv>
 #include <cstddef>
