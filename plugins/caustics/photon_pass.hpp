@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include <nimbus/cpp/per_worker.hpp>
+#include <nimbus/nimbus.hpp>
 
 #include "emission_target.hpp"
 #include "emitters.hpp"

@@ -9,7 +9,7 @@
 
 #include <nimbus/cpp/math.hpp>
 #include <nimbus/cpp/path_services.hpp>
-#include <nimbus/cpp/per_worker.hpp>
+#include <nimbus/nimbus.hpp>
 
 #include "emitters.hpp"
 #include "photon_map.hpp"
