@@ -42,8 +42,4 @@ class PhotonPass {
   PhotonKdTree map_;
 };
 
-// P_pos of area lights (uniform area sampling: a constant), from one sample_emission per light.
-void learn_area_pdfs(EmitterSet &emitters, const nimbus_host_lights_v1_t *lights,
-                     const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h);
-
 }  // namespace nimbus::caustics

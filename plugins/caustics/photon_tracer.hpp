@@ -56,7 +56,7 @@ class PhotonTracer {
              PhotonChunk &out) const;
 
  private:
-  Rgb emitted(uint32_t light, const Emitter &em, const nimbus_light_emission_t &es, const Vec3f &w) const;
+  Rgb emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w) const;
   float first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
                          const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const;
 
