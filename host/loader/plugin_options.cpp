@@ -123,7 +123,8 @@ Expected<std::vector<std::pair<std::string, std::string>>> resolve_options(
     const auto it =
         std::find_if(decls.begin(), decls.end(), [&](const OptionDecl &d) { return d.name == r.name; });
     if (it == decls.end())
-      return Error{r.where + ": " + plugin_id + " has no option '" + r.name + "' (" + names_of(decls) + ")"};
+      return Error{r.where + ": " + plugin_id + " has no option '" + r.name + "' (" + names_of(decls) + ")" +
+                   (r.hint.empty() ? "" : "; " + r.hint)};
     const auto v = normalize_option_value(*it, r.value);
     if (!v)
       return Error{r.where + ": " + plugin_id + " option '" + r.name + "' expects " +

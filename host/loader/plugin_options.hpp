@@ -28,6 +28,7 @@ struct OptionRequest {
   std::string name;
   std::string value;
   std::string where;
+  std::string hint;  // added to the error when the name is unknown (e.g. the host's own keys)
 };
 
 // The options chained to `desc` (none when it declares none). An error names what is wrong with the

@@ -57,7 +57,8 @@ std::string png_path_for(const std::string &exr) {
 // to it counts; the files it references (meshes, maps) are not hashed. The other lines catch what the
 // CLI can override without editing the file.
 std::string render_fingerprint(const SceneDesc &desc, const RenderOptions &options,
-                               const std::string &integrator, const std::string &sampler) {
+                               const std::string &integrator, const std::string &sampler,
+                               const std::vector<std::pair<std::string, std::string>> &integrator_options) {
   std::string scene_hash = "none";
   if (std::ifstream in(desc.path, std::ios::binary); in)
     scene_hash = content_hash(std::string(std::istreambuf_iterator<char>(in), {}));
@@ -65,8 +66,7 @@ std::string render_fingerprint(const SceneDesc &desc, const RenderOptions &optio
   elements.insert(options.elements.begin(), options.elements.end());
   std::string element_list, option_list;
   for (const std::string &e : elements) element_list += (element_list.empty() ? "" : ",") + e;
-  for (const auto &[k, v] : desc.render.options)
-    option_list += (option_list.empty() ? "" : ",") + k + ":" + v;
+  for (const auto &[k, v] : integrator_options) option_list += (option_list.empty() ? "" : ",") + k + ":" + v;
   const uint32_t *r = desc.render.region;
   std::string lines = "scene_hash=" + scene_hash;
   lines += "\nresolution=" + std::to_string(desc.render.width) + "x" + std::to_string(desc.render.height);
@@ -132,8 +132,13 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   if (nimbus_status_t s = ls.prepare(sampler.get(), &scene_info); s != NIMBUS_OK)
     return Error{"light sampler '" + sampler.id() + "' failed to prepare: " + status_text(s)};
 
+  // The integrator's declared options, each with the scene's or command line's value or its default.
+  std::vector<OptionRequest> requests;
+  for (const auto &o : desc->render.options) requests.push_back({o.name, o.value, o.where, o.hint});
+  auto resolved = resolve_options(integrator_id, integrator.record().options, requests);
+  if (!resolved) return Error{resolved.error().message};
   std::vector<nimbus_option_t> opts;
-  for (const auto &[k, v] : desc->render.options) opts.push_back({k.c_str(), v.c_str()});
+  for (const auto &[k, v] : *resolved) opts.push_back({k.c_str(), v.c_str()});
   nimbus_render_setup_t setup{};
   setup.header = {sizeof(setup), NIMBUS_S_TYPE_RENDER_SETUP, nullptr};
   setup.width = desc->render.width;
@@ -177,7 +182,7 @@ Expected<RenderResult> render(const SceneDesc &desc_in, const RenderOptions &opt
   CheckpointInfo checkpoint;
   checkpoint.seed = desc->render.seed;
   checkpoint.integrator = integrator_id;
-  checkpoint.fingerprint = render_fingerprint(*desc, options, integrator_id, sampler.id());
+  checkpoint.fingerprint = render_fingerprint(*desc, options, integrator_id, sampler.id(), *resolved);
   if (options.resume) {
     if (Status s = read_checkpoint(film, checkpoint_path, checkpoint); !s)
       return Error{"cannot resume: " + s.error().message};
