@@ -13,6 +13,21 @@ def is_timing_attribute(name):
     return "seconds" in lower or "date" in lower or "time" in lower or lower == "utcoffset"
 
 
+def ulp_distance(bits_a, bits_b, ptype):
+    """The largest distance in units in the last place between stored samples of one float or half channel
+    (ordered as integers with the sign folded, so -0 and +0 are 0 apart); 0 for uint channels."""
+    import numpy as np
+    if ptype not in (EXR_FLOAT, EXR_HALF):
+        return 0
+    sign = np.int64(1) << (31 if ptype == EXR_FLOAT else 15)
+
+    def ordered(bits):
+        b = bits.astype(np.int64)
+        return np.where(b & sign, -(b & (sign - 1)), b)
+
+    return int(np.abs(ordered(bits_a) - ordered(bits_b)).max()) if bits_a.size else 0
+
+
 def describe_channel(spec):
     ptype, xs, ys = spec
     text = {EXR_UINT: "uint", EXR_HALF: "half", EXR_FLOAT: "float"}.get(ptype, f"type {ptype}")
@@ -27,7 +42,7 @@ def compare_images(old_path, new_path):
         return False, f"{len(old)} parts in OLD, {len(new)} in NEW", []
     problems, notes = [], []
     pixels = channels = total_channels = 0
-    max_abs, nonfinite = 0.0, 0
+    max_abs, max_ulps, nonfinite = 0.0, 0, 0
     differing = []
     for index, (a, b) in enumerate(zip(old, new)):
         where = f"part {index} " if len(old) > 1 else ""
@@ -66,6 +81,7 @@ def compare_images(old_path, new_path):
             nonfinite += int((~finite).sum())
             if finite.any():
                 max_abs = max(max_abs, float(d[finite].max()))
+            max_ulps = max(max_ulps, ulp_distance(bits_a[diff], bits_b[diff], ca[name][0]))
         pixels += int(mask.sum())
         if retyped:
             problems.append(f"{where}{len(retyped)} channels change type or sampling ({', '.join(retyped[:4])}"
@@ -80,7 +96,7 @@ def compare_images(old_path, new_path):
     if channels:
         shown = ", ".join(differing[:8]) + (", ..." if len(differing) > 8 else "")
         text = (f"{pixels} pixels differ in {channels} of {total_channels} channels ({shown}), "
-                f"max abs difference {max_abs:.6g}")
+                f"max abs difference {max_abs:.6g}, max {max_ulps} ulp")
         if nonfinite:
             text += f", {nonfinite} samples NaN/inf on one side or with other NaN bits"
         problems.insert(0, text)
