@@ -48,7 +48,9 @@ TEST(SceneValues, RenderSection) {
   EXPECT_EQ(r.seed, 7u);
   EXPECT_EQ(r.max_depth, 12u);
   EXPECT_EQ(r.integrator, "caustics");
-  EXPECT_EQ(r.options.at("caustics"), "on");
+  ASSERT_EQ(r.options.size(), 1u);
+  EXPECT_EQ(r.options[0].name, "caustics");
+  EXPECT_EQ(r.options[0].value, "on");
   EXPECT_EQ(r.elements, (std::vector<std::string>{"albedo", "normal"}));
 }
 
