@@ -20,7 +20,7 @@ import statistics
 import subprocess
 import time
 
-from nimbus_tools import run
+from nimbus_tools import remove_render_outputs, run
 
 
 def render(nimbus, scene, integrator, seconds, seed, out):
@@ -71,12 +71,7 @@ def main():
                     out = os.path.join(args.out, f"{name}-{integ}-{t:g}s-seed{s + 1}.exr")
                     render(args.nimbus, scene, integ, t, s + 1, out)
                     errs.append(compare(args.nimbus, out, ref)["relmse"])
-                    os.remove(out)
-                    if os.path.exists(out + ".ckpt"):
-                        os.remove(out + ".ckpt")
-                    png = os.path.splitext(out)[0] + ".png"
-                    if os.path.exists(png):
-                        os.remove(png)
+                    remove_render_outputs(out)
                 med = statistics.median(errs)
                 rows.append({"scene": name, "integrator": integ, "seconds": t, "relmse_median": med,
                              "relmse_runs": " ".join(f"{e:.6g}" for e in errs),

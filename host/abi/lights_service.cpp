@@ -9,16 +9,24 @@ namespace {
 
 uint32_t count(const nimbus_host_t *host) { return world_of(host).lights.count(); }
 
+// The info struct as SDK 1.0 and 1.1 made it, and as far as `area` (since 1.2): a caller's struct_size
+// says which members it has, and the host writes those only.
+constexpr size_t kInfoSize10 = offsetof(nimbus_light_info_t, area);
+constexpr size_t kInfoSize12 = offsetof(nimbus_light_info_t, area) + sizeof(float);
+
 nimbus_status_t info(const nimbus_host_t *host, uint32_t light, nimbus_light_info_t *out) {
   const World &world = world_of(host);
-  if (!out || light >= world.lights.count() || out->header.struct_size < sizeof(nimbus_light_info_t))
+  if (!out || light >= world.lights.count() || out->header.struct_size < kInfoSize10)
     return NIMBUS_E_INVALID_ARG;
   const uint32_t size = out->header.struct_size;
   const void *next = out->header.next;
-  std::memset(reinterpret_cast<char *>(out) + sizeof(nimbus_struct_header_t), 0,
-              sizeof(nimbus_light_info_t) - sizeof(nimbus_struct_header_t));
+  nimbus_light_info_t full{};
+  light_fill_info(world.lights[light], world.lights.scene(), full);
+  const size_t covered = size >= kInfoSize12 ? kInfoSize12 : kInfoSize10;
+  std::memcpy(reinterpret_cast<char *>(out) + sizeof(nimbus_struct_header_t),
+              reinterpret_cast<const char *>(&full) + sizeof(nimbus_struct_header_t),
+              covered - sizeof(nimbus_struct_header_t));
   out->header = {size, NIMBUS_S_TYPE_LIGHT_INFO, next};
-  light_fill_info(world.lights[light], world.lights.scene(), *out);
   return NIMBUS_OK;
 }
 
@@ -65,6 +73,30 @@ void sample_emission(const nimbus_host_t *host, uint32_t light, const float u[4]
   light_sample_emission(world.lights[light], world.lights.scene(), u, *out);
 }
 
+// p is not read: every emitter is uniform over its surface.
+void eval_emission(const nimbus_host_t *host, uint32_t light, const float *, const float n[3],
+                   const float dir[3], float Le[3]) {
+  const World &ctx = world_of(host);
+  if (light >= ctx.lights.count()) {
+    Rgb(0).store(Le);
+    return;
+  }
+  const Vec3f normal = n ? Vec3f::load(n) : Vec3f(0.0f);
+  light_eval_emission(ctx.lights[light], n ? &normal : nullptr, Vec3f::load(dir)).store(Le);
+}
+
+void pdf_emission(const nimbus_host_t *host, uint32_t light, const float *, const float n[3],
+                  const float dir[3], float *pdf_pos, float *pdf_dir) {
+  const World &ctx = world_of(host);
+  if (light >= ctx.lights.count()) {
+    *pdf_pos = *pdf_dir = 0;
+    return;
+  }
+  const Vec3f normal = n ? Vec3f::load(n) : Vec3f(0.0f);
+  light_pdf_emission(ctx.lights[light], ctx.lights.scene(), n ? &normal : nullptr, Vec3f::load(dir), *pdf_pos,
+                     *pdf_dir);
+}
+
 }  // namespace
 
 const nimbus_host_lights_v1_t kLightsV1 = {sizeof(nimbus_host_lights_v1_t),
@@ -74,6 +106,8 @@ const nimbus_host_lights_v1_t kLightsV1 = {sizeof(nimbus_host_lights_v1_t),
                                            pdf_incident,
                                            eval_emitted,
                                            eval_infinite,
-                                           sample_emission};
+                                           sample_emission,
+                                           eval_emission,
+                                           pdf_emission};
 
 }  // namespace nimbus

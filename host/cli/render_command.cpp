@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <csignal>
@@ -41,12 +42,13 @@ constexpr const char *kHelp =
     "  --threads N            worker threads (default: all cores)\n"
     "  --seed S               random seed (overrides the scene)\n"
     "  --elements a,b,...     render elements besides beauty (added to the scene's)\n"
-    "  --caustics on|off      the caustics solver's switch (scene key render.caustics)\n"
     "  --integrator ID        integrator plugin (overrides the scene), e.g. pt, nimbus.pt\n"
     "  --light-sampler ID     light sampler plugin (default: nimbus.lights.tree above 8 lights,\n"
     "                         nimbus.lights.power otherwise)\n"
     "  --filter NAME          pixel filter: box, gaussian, blackman-harris (overrides the scene)\n"
     "  --region x0,y0,x1,y1   render only this pixel rectangle (crop window); the rest stays black\n"
+    "  --NAME VALUE           an option the integrator declares (`nimbus plugins --options ID` lists\n"
+    "                         them), e.g. --caustics off; the same as the scene's render.NAME\n"
     "  -q, --quiet            no progress output\n"
     "  --checkpoint PATH      checkpoint file (default: OUT.exr.ckpt)\n"
     "  --checkpoint-every S   seconds between checkpoints (default 300; 0: only when the render stops)\n"
@@ -72,7 +74,7 @@ extern "C" void on_sigint(int) {
 struct Args {
   std::string scene;
   RenderOptions options;
-  std::optional<std::string> caustics;
+  std::vector<RenderDesc::OptionSetting> integrator_options;  // --NAME VALUE flags the CLI does not know
   std::optional<std::array<uint32_t, 4>> region;
   bool quiet = false;
 };
@@ -82,6 +84,17 @@ bool parse_number(const std::string &s, T &out) {
   const char *end = s.data() + s.size();
   auto [p, ec] = std::from_chars(s.data(), end, out);
   return ec == std::errc() && p == end;
+}
+
+// `--name` or `--name=value` with a name an integrator could declare ([a-z][a-z0-9_]*).
+bool is_option_flag(const std::string &k) {
+  if (k.size() < 3 || k.compare(0, 2, "--") != 0 || !std::islower(static_cast<unsigned char>(k[2])))
+    return false;
+  for (size_t i = 3; i < k.size() && k[i] != '='; ++i)
+    if (!std::islower(static_cast<unsigned char>(k[i])) && !std::isdigit(static_cast<unsigned char>(k[i])) &&
+        k[i] != '_')
+      return false;
+  return true;
 }
 
 // Returns an error message, or an empty string on success.
@@ -131,10 +144,6 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
       std::stringstream ss(v);
       for (std::string e; std::getline(ss, e, ',');)
         if (!e.empty()) a.options.elements.push_back(e);
-    } else if (k == "--caustics") {
-      if (!value(v) || (v != "on" && v != "off"))
-        return "--caustics: expected 'on' or 'off', got '" + v + "'";
-      a.caustics = v;
     } else if (k == "--filter") {
       a.options.filter = value(v) ? filter_from_name(v) : std::nullopt;
       if (!a.options.filter) return "--filter: expected one of " + filter_names() + ", got '" + v + "'";
@@ -164,6 +173,24 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
       a.options.checkpoint_interval_seconds = t;
     } else if (k == "--resume") {
       a.options.resume = true;
+    } else if (is_option_flag(k)) {
+      // Not a flag of the render command: an option of the integrator, checked once it is bound.
+      const size_t eq = k.find('=');
+      std::string name = k.substr(2, eq == std::string::npos ? std::string::npos : eq - 2);
+      // The value is the next argument unless that is another flag (a negative number is a value).
+      const auto is_value = [](const std::string &s) {
+        return !s.empty() &&
+               (s[0] != '-' ||
+                (s.size() > 1 && (std::isdigit(static_cast<unsigned char>(s[1])) || s[1] == '.')));
+      };
+      if (eq != std::string::npos)
+        v = k.substr(eq + 1);
+      else if (i + 1 < args.size() && is_value(args[i + 1]))
+        v = args[++i];
+      else
+        return k + ": expected a value (an integrator option: --NAME VALUE)";
+      a.integrator_options.push_back(
+          {name, v, "--" + name, "see `nimbus render --help` for the render command's flags"});
     } else if (!k.empty() && k[0] == '-') {
       return "unknown option '" + k + "'";
     } else if (a.scene.empty()) {
@@ -195,7 +222,7 @@ int render_command(const std::vector<std::string> &argv) {
     return kExitFailure;
   }
   SceneDesc &desc = scene.value();
-  if (a.caustics) desc.render.options["caustics"] = *a.caustics;
+  for (auto &o : a.integrator_options) desc.render.options.push_back(std::move(o));
   if (a.region) {
     if ((*a.region)[2] > desc.render.width || (*a.region)[3] > desc.render.height) {
       std::fprintf(stderr, "nimbus render: --region exceeds the image (%ux%u)\n", desc.render.width,

@@ -26,6 +26,8 @@ class [[nodiscard]] Expected {
   T *operator->() { return &value(); }
   const T *operator->() const { return &value(); }
   T &operator*() & { return value(); }
+  const T &operator*() const & { return value(); }
+  T &&operator*() && { return std::move(*this).value(); }
   const Error &error() const { return std::get<1>(v_); }
 
  private:

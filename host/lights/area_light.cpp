@@ -11,6 +11,9 @@ struct SurfacePoint {
   float pdf_area = 0;
 };
 
+// Points are uniform by area on every shape (meshes: triangles picked by area).
+float area_pdf(const ShapeRecord &s) { return s.area > 0 ? 1 / s.area : 0; }
+
 SurfacePoint sample_area(const AreaLight &a, const ShapeRecord &s, float u0, float u1) {
   SurfacePoint sp;
   switch (s.type) {
@@ -40,7 +43,7 @@ SurfacePoint sample_area(const AreaLight &a, const ShapeRecord &s, float u0, flo
       break;
     }
   }
-  sp.pdf_area = s.area > 0 ? 1 / s.area : 0;
+  sp.pdf_area = area_pdf(s);
   return sp;
 }
 
@@ -143,9 +146,24 @@ void area_sample_emission(const AreaLight &a, const GeometryScene &geo, const fl
   out.flags = NIMBUS_LIGHT_AREA | (a.two_sided ? NIMBUS_LIGHT_TWO_SIDED : 0u);
 }
 
+// The densities of area_sample_emission: uniform by area, cosine-weighted about the normal (two-sided:
+// about the side dir leaves from, which it picks with probability 1/2).
+void area_pdf_emission(const AreaLight &a, const GeometryScene &geo, const Vec3f *n, const Vec3f &dir,
+                       float &pdf_pos, float &pdf_dir) {
+  pdf_pos = area_pdf(geo.shapes()[a.shape]);
+  if (!n) {
+    pdf_dir = 0;
+    return;
+  }
+  const float cos_theta = dot(*n, dir);
+  pdf_dir =
+      a.two_sided ? cosine_hemisphere_pdf(std::abs(cos_theta)) * 0.5f : cosine_hemisphere_pdf(cos_theta);
+}
+
 void area_fill_info(const AreaLight &a, const GeometryScene &geo, nimbus_light_info_t &info) {
   const ShapeRecord &s = geo.shapes()[a.shape];
   info.flags = NIMBUS_LIGHT_AREA | (a.two_sided ? NIMBUS_LIGHT_TWO_SIDED : 0u);
+  info.area = s.area;
   Vec3f lo{kInfinity}, hi{-kInfinity};
   if (s.type == ShapeType::Sphere || s.type == ShapeType::Disk) {
     lo = s.center - Vec3f(s.radius), hi = s.center + Vec3f(s.radius);

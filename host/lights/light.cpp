@@ -30,6 +30,10 @@ void set_infinite_incident(const LightScene &scene, const Vec3f &p, const Vec3f 
   out.flags = flags | NIMBUS_LIGHT_INFINITE;
 }
 
+// The area density of an infinite light's photon origins: uniform on the disk of the scene's bounding
+// sphere.
+float infinite_pdf_pos(const LightScene &scene) { return 1 / (kPi * sqr(scene.radius)); }
+
 // A photon arriving from direction `to_light` (unit, towards the light): starts on the disk of the
 // scene's bounding sphere that faces the light, and travels along -to_light.
 void set_infinite_emission(const LightScene &scene, const Vec3f &to_light, float u0, float u1, const Rgb &L,
@@ -41,7 +45,7 @@ void set_infinite_emission(const LightScene &scene, const Vec3f &to_light, float
   (-to_light).store(out.dir);
   (-to_light).store(out.n);
   L.store(out.Le);
-  out.pdf_pos = 1 / (kPi * sqr(scene.radius));
+  out.pdf_pos = infinite_pdf_pos(scene);
   out.pdf_dir = pdf_dir;
   out.flags = flags | NIMBUS_LIGHT_INFINITE;
 }
@@ -167,6 +171,48 @@ void light_sample_emission(const Light &light, const LightScene &scene, const fl
                    const Vec3f w = environment_sample(l, u[2], u[3], pdf, radiance);
                    if (!(pdf > 0)) return;
                    set_infinite_emission(scene, w, u[0], u[1], radiance, pdf, 0, out);
+                 },
+             },
+             light.kind);
+}
+
+// Each case mirrors light_sample_emission: the same tests and the same expressions, so that a sampled
+// photon's Le, pdf_pos and pdf_dir come back as they were sampled (up to the rounding of the direction).
+Rgb light_eval_emission(const Light &light, const Vec3f *n, const Vec3f &dir) {
+  return std::visit(
+      Overloaded{
+          [&](const PointLight &l) { return l.intensity; },
+          [&](const SpotLight &l) { return l.intensity * l.falloff(dot(dir, l.frame.n)); },
+          [&](const AreaLight &l) { return n && (l.two_sided || dot(*n, dir) > 0) ? l.radiance : Rgb(0); },
+          [&](const SunLight &l) {
+            return l.is_delta() || dot(-dir, l.to_sun) >= l.cos_half_angle ? l.radiance : Rgb(0);
+          },
+          [&](const EnvironmentLight &l) { return l.lookup(-dir); },
+      },
+      light.kind);
+}
+
+void light_pdf_emission(const Light &light, const LightScene &scene, const Vec3f *n, const Vec3f &dir,
+                        float &pdf_pos, float &pdf_dir) {
+  pdf_pos = pdf_dir = 0;
+  std::visit(Overloaded{
+                 [&](const PointLight &) { pdf_pos = 1, pdf_dir = kUniformSpherePdf; },
+                 [&](const SpotLight &l) {
+                   pdf_pos = 1;
+                   if (dot(dir, l.frame.n) >= l.cos_falloff_end)
+                     pdf_dir = uniform_cone_pdf(l.cos_falloff_end);
+                 },
+                 [&](const AreaLight &l) { area_pdf_emission(l, *scene.geometry, n, dir, pdf_pos, pdf_dir); },
+                 [&](const SunLight &l) {
+                   pdf_pos = infinite_pdf_pos(scene);
+                   if (l.is_delta())
+                     pdf_dir = 1;
+                   else if (dot(-dir, l.to_sun) >= l.cos_half_angle)
+                     pdf_dir = uniform_cone_pdf(l.cos_half_angle);
+                 },
+                 [&](const EnvironmentLight &l) {
+                   pdf_pos = infinite_pdf_pos(scene);
+                   pdf_dir = l.pdf(-dir);
                  },
              },
              light.kind);

@@ -58,7 +58,7 @@ struct EnvironmentLight {
   // than the nearest texel (photographed maps, shown as they are).
   bool bilinear = false;
   // A texel's radiance beside its sampling density in (u, v): an escaped ray looks up both (radiance,
-  // then the MIS pdf) and they share a cache line; on a 512x256 sky the two separate tables missed twice.
+  // then the MIS pdf), so they share a cache line where two separate tables would miss twice.
   struct Texel {
     Rgb radiance;
     float pdf_uv = 0;
@@ -93,6 +93,12 @@ Rgb light_eval_emitted(const Light &light, const nimbus_interaction_t &on_light,
 Rgb light_eval_infinite(const Light &light, const Vec3f &dir);
 void light_sample_emission(const Light &light, const LightScene &scene, const float u[4],
                            nimbus_light_emission_t &out);
+// What the light emits from p (area lights: with normal *n) along dir, and the densities with which
+// light_sample_emission produces that photon (conventions of nimbus_host_lights_v1_t's eval_emission and
+// pdf_emission). n may be null: area lights then emit nothing and have pdf_dir 0.
+Rgb light_eval_emission(const Light &light, const Vec3f *n, const Vec3f &dir);
+void light_pdf_emission(const Light &light, const LightScene &scene, const Vec3f *n, const Vec3f &dir,
+                        float &pdf_pos, float &pdf_dir);
 void light_fill_info(const Light &light, const LightScene &scene, nimbus_light_info_t &info);
 
 // Per-kind helpers (one file each).
@@ -102,6 +108,8 @@ float area_pdf_incident(const AreaLight &a, const GeometryScene &geo, const Vec3
                         const nimbus_interaction_t &on_light);
 void area_sample_emission(const AreaLight &a, const GeometryScene &geo, const float u[4],
                           nimbus_light_emission_t &out);
+void area_pdf_emission(const AreaLight &a, const GeometryScene &geo, const Vec3f *n, const Vec3f &dir,
+                       float &pdf_pos, float &pdf_dir);
 void area_fill_info(const AreaLight &a, const GeometryScene &geo, nimbus_light_info_t &info);
 
 }  // namespace nimbus

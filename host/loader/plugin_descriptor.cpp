@@ -104,6 +104,9 @@ DescriptorResult read_descriptor(const nimbus_descriptor_t *desc, uint32_t index
       return fail(plugin + " has a malformed required service '" + s + "' (expected id@revision)");
     }
   }
+  auto options = read_option_declarations(*desc);
+  if (!options) return fail(plugin + ": " + options.error().message);
+  copy.options = std::move(options.value());
   return {std::move(copy), {}};
 }
 

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "loader/plugin_options.hpp"
+
 namespace nimbus {
 
 // "integrator", "light-sampler", "guiding"; "unknown kind <n>" otherwise.
@@ -28,11 +30,13 @@ struct DescriptorCopy {
   nimbus_version_t version{};
   std::vector<std::string> features;
   std::vector<std::string> required_services;
+  std::vector<OptionDecl> options;  // declared options (SDK 1.2), validated
 };
 
 // Validates descriptor `index` of a library and copies it, or returns why it is malformed. Checks the
 // header (struct_size covers 1.0, s_type), id (non-empty printable ASCII, no spaces), name, vendor, kind,
-// and that the NULL-terminated lists end within a sane bound (a missing terminator must not run away).
+// that the NULL-terminated lists end within a sane bound (a missing terminator must not run away), and
+// the declared options (plugin_options.hpp).
 struct DescriptorResult {
   std::optional<DescriptorCopy> copy;
   std::string error;  // set when copy is empty

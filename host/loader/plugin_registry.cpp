@@ -141,6 +141,7 @@ size_t PluginRegistry::load_plugins(const Library &lib, size_t library_index, co
     rec.version = d.version;
     rec.features = d.features;
     rec.required_services = d.required_services;
+    rec.options = d.options;
     if (auto dup = by_id_.find(d.id); dup != by_id_.end()) {
       refuse(std::move(rec),
              "duplicate plugin id '" + d.id + "', already provided by " + records_[dup->second.record].path);

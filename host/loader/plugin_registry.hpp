@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/expected.hpp"
+#include "loader/plugin_options.hpp"
 
 namespace nimbus {
 
@@ -32,6 +33,7 @@ struct PluginRecord {
   nimbus_version_t version{};
   std::vector<std::string> features;
   std::vector<std::string> required_services;
+  std::vector<OptionDecl> options;  // declared options (SDK 1.2)
 
   bool has_feature(std::string_view feature) const;
 };

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "loader/plugin_interface.hpp"
+#include "loader/plugin_options.hpp"
 #include "loader/plugin_status.hpp"
 
 namespace nimbus {
@@ -23,6 +24,11 @@ Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &j
   if (!ls) return ls.error();
   p.it = it.value();
   p.ls = ls.value();
+  std::vector<OptionRequest> requests;
+  for (const auto &o : job.integrator_options) requests.push_back({o.name, o.value, o.where, o.hint});
+  auto options = resolve_options(p.integrator.id(), p.integrator.record().options, requests);
+  if (!options) return options.error();
+  p.options = std::move(options.value());
   return p;
 }
 
@@ -38,7 +44,7 @@ Status prepare_plugins(const BoundPlugins &p, const RenderJob &job, const World 
     return Error{"light sampler '" + p.sampler.id() + "' failed to prepare: " + status_text(s)};
 
   std::vector<nimbus_option_t> opts;
-  for (const auto &[k, v] : job.integrator_options) opts.push_back({k.c_str(), v.c_str()});
+  for (const auto &[k, v] : p.options) opts.push_back({k.c_str(), v.c_str()});
   nimbus_render_setup_t setup{};
   setup.header = {sizeof(setup), NIMBUS_S_TYPE_RENDER_SETUP, nullptr};
   setup.width = job.width;

@@ -17,9 +17,12 @@ struct BoundPlugins {
   PluginHandle integrator, sampler;
   const nimbus_integrator_v1_t *it = nullptr;
   const nimbus_light_sampler_v1_t *ls = nullptr;
+  // Every option the integrator declares, with the job's value or the default (plugin_options.hpp).
+  std::vector<std::pair<std::string, std::string>> options;
 };
 
 // Creates both plugins for `host` (which must outlive them); the sampler is chosen for `light_count`.
+// The job's integrator options are checked against the integrator's declarations.
 Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &job, uint32_t light_count,
                                     const nimbus_host_t *host);
 

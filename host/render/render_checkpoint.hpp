@@ -20,7 +20,8 @@ class RenderCheckpoint {
   using Clock = std::chrono::steady_clock;
 
   // The checkpoint for `job` rendered by the bound plugins (their ids go into its fingerprint).
-  RenderCheckpoint(const RenderJob &job, const std::string &integrator_id, const std::string &sampler_id);
+  RenderCheckpoint(const RenderJob &job, const std::string &integrator_id, const std::string &sampler_id,
+                   const std::vector<std::pair<std::string, std::string>> &integrator_options);
 
   // Resuming: the film's sums, iteration count and non-finite count from the file (or why they cannot
   // be). Otherwise a warning through `warn` (if any) when a checkpoint is about to be replaced.

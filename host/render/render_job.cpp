@@ -39,13 +39,13 @@ std::string RenderJob::light_sampler_for(uint32_t light_count) const {
   return light_count > kTreeLightThreshold ? "nimbus.lights.tree" : "nimbus.lights.power";
 }
 
-std::string RenderJob::fingerprint(const std::string &integrator_id,
-                                   const std::string &light_sampler_id) const {
+std::string RenderJob::fingerprint(const std::string &integrator_id, const std::string &light_sampler_id,
+                                   const std::vector<std::pair<std::string, std::string>> &options) const {
   std::set<std::string> element_set(elements.begin(), elements.end());
   if (lightmix) element_set.insert("lightmix");
   std::string element_list, option_list;
   for (const std::string &e : element_set) element_list += (element_list.empty() ? "" : ",") + e;
-  for (const auto &[k, v] : integrator_options) option_list += (option_list.empty() ? "" : ",") + k + ":" + v;
+  for (const auto &[k, v] : options) option_list += (option_list.empty() ? "" : ",") + k + ":" + v;
   const std::vector<SourceFile> &sources = scene->sources;
   std::string lines = "scene_hash=" + (sources.empty() ? std::string("none") : sources.front().hash);
   for (size_t i = 1; i < sources.size(); ++i) lines += source_line(sources[i]);

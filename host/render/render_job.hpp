@@ -64,7 +64,8 @@ struct RenderJob {
   StopRules stop;
 
   std::string integrator;  // a plugin id or short name ("pt")
-  std::map<std::string, std::string> integrator_options;
+  // The integrator's options as the scene and command line set them (checked once it is bound).
+  std::vector<RenderDesc::OptionSetting> integrator_options;
   std::string light_sampler;  // a plugin id; empty: chosen by light count (light_sampler_for)
   // Film elements besides beauty, in the order requested (scene first), without "lightmix", which asks
   // for one layer per light group instead.
@@ -84,7 +85,9 @@ struct RenderJob {
   // with the same lines (read_checkpoint names those that differ). The scene's text and every file the
   // parser read for it are hashed (SceneDesc::sources), so any edit to them counts; the other lines catch
   // what the command line can change without editing a file. The ids are those of the bound plugins.
-  std::string fingerprint(const std::string &integrator_id, const std::string &light_sampler_id) const;
+  // `options`: the integrator's options as resolved against its declarations.
+  std::string fingerprint(const std::string &integrator_id, const std::string &light_sampler_id,
+                          const std::vector<std::pair<std::string, std::string>> &options) const;
 };
 
 // Resolves and checks the job; `scene` must outlive it. Errors name what is inconsistent.

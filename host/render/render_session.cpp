@@ -65,7 +65,7 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
     return s.error();
 
   // Restore the sums before the first iteration, or warn before replacing someone's work.
-  RenderCheckpoint checkpoint(job, plugins.integrator.id(), plugins.sampler.id());
+  RenderCheckpoint checkpoint(job, plugins.integrator.id(), plugins.sampler.id(), plugins.options);
   if (Status s = checkpoint.restore_or_warn(film, message); !s) return s.error();
   if (job.stop.target_error > 0)
     run.error_estimate = std::make_unique<ErrorEstimate>(job.width, job.height, run.worker_count);

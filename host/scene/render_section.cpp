@@ -1,7 +1,6 @@
 // `render:` — image size, stopping rule, seed, path length, integrator and its options, film elements,
 // pixel filter, render region and light sampler.
 #include <algorithm>
-#include <cctype>
 #include <optional>
 #include <string>
 
@@ -15,17 +14,10 @@ namespace {
 constexpr int64_t kMaxResolution = 16384;
 constexpr int64_t kMaxDepth = 1024;
 
-// `caustics: on|off` is the only integrator option v0 knows. Kept as written in RenderDesc::options
-// ("on"/"off"); YAML booleans are accepted because `on` and `true` read the same to users.
-std::string read_switch(const YamlValue &v) {
-  if (v.is_scalar()) {
-    std::string s = v.text();
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (s == "on" || s == "true" || s == "yes") return "on";
-    if (s == "off" || s == "false" || s == "no") return "off";
-  }
-  v.fail("expected on or off, got " + v.describe());
-}
+// The render section's own keys; any other key is an option of the bound integrator.
+const std::vector<std::string_view> kRenderKeys{"resolution", "iterations", "time",         "target_error",
+                                                "seed",       "max_depth",  "integrator",   "elements",
+                                                "filter",     "region",     "light_sampler"};
 
 // [x0, y0, x1, y1] in pixels, half-open ([x0, x1) x [y0, y1)), inside the image. Checked against the
 // resolution of the same section, so the order of the keys does not matter.
@@ -45,8 +37,19 @@ void read_region(const YamlValue &v, RenderDesc &r) {
 RenderDesc read_render(const YamlValue &section) {
   RenderDesc r;
   if (section.is_null()) return r;  // `render:` with nothing under it: all defaults
-  const YamlMap m = section.map({"resolution", "iterations", "time", "target_error", "seed", "max_depth",
-                                 "integrator", "caustics", "elements", "filter", "region", "light_sampler"});
+  const YamlMap m = section.map();
+  // Keys the host does not know are the bound integrator's options, checked against its declarations
+  // once it is bound (so an unknown key is reported with the integrator's options beside the host's).
+  for (const YamlMap::Entry &e : m.entries()) {
+    if (std::find(kRenderKeys.begin(), kRenderKeys.end(), e.key) != kRenderKeys.end()) continue;
+    if (!e.value.is_scalar())
+      e.value.fail("expected a value for the integrator's option, got " + e.value.describe());
+    const SourceLocation at = e.key_value.location();
+    r.options.push_back({e.key, e.value.text(),
+                         at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": " +
+                             e.key_value.path(),
+                         "the render section's own keys: " + join_names(kRenderKeys)});
+  }
 
   if (auto v = m.get("resolution")) {
     const std::vector<YamlValue> wh = v->sequence_of(2, "[width, height]");
@@ -59,7 +62,6 @@ RenderDesc read_render(const YamlValue &section) {
   if (auto v = m.get("seed")) r.seed = uint64_t(v->integer(Range::at_least(0)));
   if (auto v = m.get("max_depth")) r.max_depth = uint32_t(v->integer(Range::closed(1, kMaxDepth)));
   if (auto v = m.get("integrator")) r.integrator = v->nonempty_string();
-  if (auto v = m.get("caustics")) r.options["caustics"] = read_switch(*v);
   if (auto v = m.get("elements")) {
     for (const YamlValue &e : v->sequence()) {
       std::string name = e.nonempty_string();

@@ -30,8 +30,15 @@ struct RenderDesc {
   uint64_t seed = 1;
   uint32_t max_depth = 16;        // path length in segments: a camera ray that hits a light is 1
   std::string integrator = "pt";  // short name (pt, lt, caustics) or full plugin id
-  // Options for the integrator (e.g. caustics: on). Values are kept as written.
-  std::map<std::string, std::string> options;
+  // Options for the bound integrator (render keys the host does not know, e.g. caustics: off, and
+  // --<name> flags), as written: the integrator's declarations decide, once it is bound, whether a key
+  // exists and whether its value is valid. Later settings of one name win.
+  struct OptionSetting {
+    std::string name, value;
+    std::string where;  // for errors: "scene.yaml:12:3: render.caustics" or "--caustics"
+    std::string hint;   // for an unknown name: what else the user may have meant (the host's own keys)
+  };
+  std::vector<OptionSetting> options;
   std::vector<std::string> elements;  // requested render elements besides beauty
   FilterType filter = FilterType::Box;
   // Render region (crop window) in pixels, [x0, x1) x [y0, y1); empty (all zero) = the whole image.

@@ -9,7 +9,6 @@
 
 #include <chrono>
 #include <cstring>
-#include <string>
 
 #include <nimbus/cpp/camera_path.hpp>
 
@@ -25,42 +24,40 @@ namespace {
 
 const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, "nimbus.host.tasks@1", nullptr};
 const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix", nullptr};
+const nimbus_option_decl_t kOptions[] = {
+    {"caustics", NIMBUS_OPTION_SWITCH, 0, "on", nullptr,
+     "caustics by photon merging; off renders exactly what nimbus.pt renders"}};
 
 class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, CausticsRecord> {
   using Base = sdk::CameraPathIntegrator<CausticsSolver, CausticsRecord>;
 
  public:
-  NIMBUS_DESCRIPTOR("nimbus.caustics", "Caustics solver (PT + selective photon merging, MIS)", "Nimbus",
-                    NIMBUS_KIND_INTEGRATOR, 1, 0, 0, kFeatures, kRequired)
+  NIMBUS_DESCRIPTOR_WITH_OPTIONS("nimbus.caustics", "Caustics solver (PT + selective photon merging, MIS)",
+                                 "Nimbus", NIMBUS_KIND_INTEGRATOR, 1, 0, 0, kFeatures, kRequired, kOptions)
 
   nimbus_status_t init() override {
     if (nimbus_status_t s = Base::init(); s != NIMBUS_OK) return s;
     tasks_ = host().service<nimbus_host_tasks_v1_t>(NIMBUS_SERVICE_TASKS);
     progress_ = host().service<nimbus_host_progress_v1_t>(NIMBUS_SERVICE_PROGRESS);  // optional
+    // Photon emission and the camera side's emission densities come from the lights service (SDK 1.2).
+    if (!NIMBUS_HAS_MEMBER(services().lights, nimbus_host_lights_v1_t, pdf_emission)) {
+      log(NIMBUS_LOG_ERROR, "needs a host whose lights service has eval_emission and pdf_emission (SDK 1.2)");
+      return NIMBUS_E_UNSUPPORTED;
+    }
     return tasks_ ? NIMBUS_OK : NIMBUS_E_UNSUPPORTED;
   }
 
   nimbus_status_t prepare(const nimbus_render_setup_t &setup) override {
-    enabled_ = true;
-    for (uint32_t i = 0; i < setup.option_count; ++i) {
-      const nimbus_option_t &o = setup.options[i];
-      if (o.key && o.value && std::strcmp(o.key, "caustics") == 0) {
-        const std::string v = o.value;
-        if (v == "off" || v == "false" || v == "no" || v == "0")
-          enabled_ = false;
-        else if (v == "on" || v == "true" || v == "yes" || v == "1")
-          enabled_ = true;
-        else
-          return NIMBUS_E_INVALID_ARG;
-      }
-    }
+    // The host validated the switch against kOptions (on or off); absent, it is the default.
+    const char *caustics = sdk::option_value(setup, "caustics");
+    enabled_ = !caustics || std::strcmp(caustics, "off") != 0;
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
     float center[3];
     scene_radius_ = services().scene->bounding_sphere(host().get(), center);
     scene_center_ = Vec3f::load(center);
     std::vector<Emitter> emitters;
     for (const nimbus_light_info_t &info : light_info()) emitters.push_back(make_emitter(info));
-    emitters_.build(std::move(emitters), scene_center_, scene_radius_);
+    emitters_.build(std::move(emitters), scene_center_, scene_radius_, host().get(), services().lights);
     merge_element_ =
         services().film->register_element(host().get(), "caustics_merge", 3, NIMBUS_ELEMENT_AVERAGE);
     return NIMBUS_OK;
@@ -83,7 +80,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     useful_.reset(armed_ ? size_t(width_) * height_ : 0);
     pass_.release();
     map_active_ = false;
-    emitter_pdfs_known_ = false;
     photons_saw_sharp_ = false;
     next_target_ = {};
     emitters_.set_target(scene_center_, scene_radius_);
@@ -166,8 +162,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
 
   nimbus_status_t photon_pass(uint64_t paths) {
     const nimbus_host_t *h = host().get();
-    if (!emitter_pdfs_known_)
-      learn_area_pdfs(emitters_, services().lights, tasks_, h), emitter_pdfs_known_ = true;
     const uint32_t pass = schedule_.passes() + 1;
     if (next_target_.valid())
       emitters_.set_target(next_target_.sphere.center, next_target_.sphere.radius, next_target_.lo,
@@ -209,7 +203,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   bool enabled_ = true;  // the `caustics` switch
   bool armed_ = false;   // enabled and some light emits photons
   EmitterSet emitters_;
-  bool emitter_pdfs_known_ = false;
   float scene_radius_ = 1, theta_pix_ = 0;
   Vec3f scene_center_;
   EmissionTarget next_target_;  // the emission target from the next photon pass on

@@ -1,6 +1,8 @@
 // What the caustics solver knows about each light: its kind (from the info flags), LightMix group, and
 // the photon-emission densities the MIS weights need on the camera side (P_sel, P_pos, P_dir), which
-// must equal what the photon tracer produces for the same point and direction.
+// must equal what the photon tracer produces for the same point and direction. Where the solver emits
+// as the host does, those densities are the host's own (lights service pdf_emission); where it aims
+// (the cones and the sun's disk or rectangle below), they are the solver's.
 //
 // Emission target (spec 6.2's emission disk, extended to finite lights). Photons that miss every sharp
 // surface on their first segment can only be stored after a rough-sharp-rough sequence, which path
@@ -15,8 +17,9 @@
 //   area:  the host's uniform point on the emitter, then directions uniform in the cone from that point
 //          covering the target (cosine-weighted, as the host, from points inside the target).
 // Directions outside the cone have P_dir = 0: no merge technique exists for those paths and MIS gives
-// them to path tracing, so the image stays consistent. A small glass sphere 2 m from a point light
-// covers 1.5 % of its sphere of directions: the cone multiplies the photons that reach it by ~20-60.
+// them to path tracing, so the image stays consistent. A small glass object covers a small fraction of a
+// point light's sphere of directions: uniform emission would send most photons past it, the cone sends
+// them towards it.
 // Before the probe's target is known the target is the scene's bounding sphere (no cone for lights
 // inside it). Environment lights do not emit photons (v1: uniform and dim skies are PT's job, spec 6.2;
 // map pruning comes with light-selection adaptation), so their P_sel is 0 and no merge technique exists.
@@ -71,7 +74,7 @@ struct Emitter {
   float power = 0;
   Vec3f axis;              // spot: the cone axis; sun: the direction photons travel
   float cos_theta_e = -1;  // spot / sun cone
-  float pdf_pos = 0;       // area: 1 / area (filled by the first photon pass); sun: 1 / (emission area)
+  float pdf_pos = 0;       // infinite lights: 1 / (the area of the solver's emission disk or rectangle)
   Vec3f position;          // point, spot
   EmissionCone cone;       // point, spot: the emission cone towards the target (inactive: the host's)
   // sun: the emission rectangle [s0, s1] x [t0, t1] around the target's centre, in the plane
@@ -109,7 +112,10 @@ inline Emitter make_emitter(const nimbus_light_info_t &info) {
 // product lp of mis.hpp for a given emitter point and direction.
 class EmitterSet {
  public:
-  void build(std::vector<Emitter> emitters, const Vec3f &scene_center, float scene_radius) {
+  // `lights` (host-owned) must have pdf_emission (SDK 1.2).
+  void build(std::vector<Emitter> emitters, const Vec3f &scene_center, float scene_radius,
+             const nimbus_host_t *host, const nimbus_host_lights_v1_t *lights) {
+    host_ = host, lights_ = lights;
     emitters_ = std::move(emitters);
     scene_center_ = scene_center, scene_radius_ = scene_radius;
     set_target(scene_center, scene_radius);
@@ -185,30 +191,15 @@ class EmitterSet {
     const float sel = table_.pmf(l);
     if (!(sel > 0)) return 0;
     const Emitter &e = emitters_[l];
-    if (!e.infinite())
-      if (const EmissionCone c = cone(l, z); c.active()) {
-        const float pdf_pos = e.kind == EmitterKind::Area ? e.pdf_pos : 1.0f;  // point, spot: a delta
-        return c.contains(w) ? sel * pdf_pos * c.pdf() : 0.0f;
-      }
-    switch (e.kind) {
-      case EmitterKind::Area: {
-        const float cos_w = dot(n, w);
-        const bool two_sided = e.flags & NIMBUS_LIGHT_TWO_SIDED;
-        const float pdf_dir = two_sided ? 0.5f * std::abs(cos_w) * kInvPi : std::max(cos_w, 0.0f) * kInvPi;
-        return sel * e.pdf_pos * pdf_dir;
-      }
-      case EmitterKind::Point:
-        return sel * kUniformSpherePdf;
-      case EmitterKind::Spot:
-        return dot(w, e.axis) >= e.cos_theta_e ? sel * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
-      case EmitterKind::Sun:
-        if (!on_target(l, p, w)) return 0;
-        if (e.delta_direction()) return sel * e.pdf_pos;
-        return dot(w, e.axis) >= e.cos_theta_e ? sel * e.pdf_pos * uniform_cone_pdf(e.cos_theta_e) : 0.0f;
-      case EmitterKind::Environment:
-        return 0;
-    }
-    return 0;
+    if (e.kind == EmitterKind::Environment || (e.infinite() && !on_target(l, p, w))) return 0;
+    float za[3], na[3], wa[3], pdf_pos = 0, pdf_dir = 0;
+    z.store(za), n.store(na), w.store(wa);
+    lights_->pdf_emission(host_, l, za, na, wa, &pdf_pos, &pdf_dir);
+    if (e.infinite())
+      pdf_pos = e.pdf_pos;  // the solver's disk or rectangle
+    else if (const EmissionCone c = cone(l, z); c.active())
+      pdf_dir = c.contains(w) ? c.pdf() : 0.0f;
+    return sel * pdf_pos * pdf_dir;
   }
 
  private:
@@ -247,6 +238,8 @@ class EmitterSet {
   }
 
   std::vector<Emitter> emitters_;
+  const nimbus_host_t *host_ = nullptr;
+  const nimbus_host_lights_v1_t *lights_ = nullptr;
   AliasTable table_;
   Vec3f scene_center_, disk_center_;
   float scene_radius_ = 1, disk_radius_ = 1;

@@ -58,14 +58,12 @@ class MergingPath {
   void vertex(const sdk::PathVertex &v, CausticsRecord &rec) {
     const bool rough = !is_sharp(mc_.bsdf, mc_.host, *v.ix, v.lobes);
     lookup_ = mis_.append(rough);
-    if (lookup_) {
-      if (mis_.rough_count == 1) radius_ = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
-      r_ = mis_.rough_count == 1 ? radius_ : r_ * kRadiusGrowth;
-    }
+    if (lookup_ && mis_.rough_count == 1)
+      radius_ = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
     // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
     if (lookup_ && v.segments + 2 <= mc_.max_depth) {
-      radii_.add(r_);
-      merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, r_, v.segments, rec);
+      radii_.add(radius_);
+      merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, rec);
     }
   }
 
@@ -86,15 +84,14 @@ class MergingPath {
   void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
                uint32_t segments) {
     mis_.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup_, segments,
-                 kPi * r_ * r_ * float(mc_.map_paths));
+                 kPi * radius_ * radius_ * float(mc_.map_paths));
   }
 
  private:
   const MergeContext &mc_;
   RadiusHistogram &radii_;  // this worker's lookup radii
   CameraMis mis_;
-  float radius_ = 0;     // r_a: fixed at the first rough vertex (spec 3.5)
-  float r_ = 0;          // r_s of the current lookup vertex: r_a * kRadiusGrowth^(c_s - 1)
+  float radius_ = 0;     // r_a: fixed at the first rough vertex, used by every lookup (spec 3.5)
   float length_ = 0;     // path length from the lens to the current vertex
   bool lookup_ = false;  // the current vertex looks photons up
 };

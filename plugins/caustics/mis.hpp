@@ -6,14 +6,12 @@
 //
 // Lookups happen at every rough camera vertex (spec 3.2 E2 with n_max unlimited, the paper's VCM
 // choice): with lookups at the first two only, paths with three or more rough vertices in front of a
-// caustic (e.g. pool floor -> wall -> floor -> water -> sun) had no merge technique at all and came from
-// rare BSDF hits of the sun alone, fireflies of radiance ~4e4.
+// caustic (e.g. pool floor -> wall -> floor -> water -> sun) would have no merge technique at all and
+// come from rare BSDF hits of the sun alone, as fireflies.
 //
-// Merge radius: r_s = r_a * kappa^(c_s - 1) with r_a the path's first-rough-vertex radius (spec 3.5) and
-// c_s the number of rough vertices among x_1 .. x_s: lookups behind a diffuse bounce see light that the
-// bounce blurs anyway and use a wider kernel. r_s is a function of the camera prefix, and the photon
-// side can evaluate r_s' / r_s for its own merges (kappa per rough vertex between s and s'), so the
-// weights stay a partition of unity.
+// Merge radius: every lookup of a camera path uses r_a, the radius at its first rough vertex (spec 3.5),
+// so the radius ratio between two merges of one path is 1. Wider kernels behind a diffuse bounce did not
+// lower the error, which sits in first-vertex merges (docs/performance.md §6).
 //
 // Every quantity here is already raised to the MIS exponent: mis(x) = x^beta with beta = 2, the power
 // heuristic of nimbus.pt, so that paths without an eligible merge get exactly nimbus.pt's weights.
@@ -40,16 +38,8 @@ inline constexpr uint32_t kPhotonMaxVertices = 32;
 // Pending camera-side merge terms: a term at x_s' can only be a technique for paths with
 // k - s' <= D_photon, so at most D_photon + 1 terms are alive at once.
 inline constexpr uint32_t kMaxCameraTerms = kPhotonMaxVertices + 1;
-// kappa: growth of the merge radius per rough camera vertex after the first (see above). 1: measured at
-// 6 s on 640x360, kappa = 2 and 4 did not lower sphere-point's error (its error is in first-vertex
-// merges) and halved / sixth-ed the pool's iterations (lookups behind the floor find 4-16x the photons).
-inline constexpr float kRadiusGrowth = 1.0f;
-
 // The MIS exponent beta = 2 applied to one factor.
 inline float mis(float x) { return x * x; }
-
-// mis((r_s' / r_s)^2) per rough vertex between two merge vertices: what the photon side multiplies B by.
-inline float radius_growth_mis(float kappa = kRadiusGrowth) { return mis(kappa * kappa); }
 
 // Photon-side state of one photon path (spec 3.3, "photon side").
 struct PhotonMis {
@@ -74,14 +64,12 @@ struct PhotonMis {
   // Scattering at the current vertex: c_out = |cos| of the new direction, w_fwd its pdf, w_rev the pdf
   // of the reverse direction (what a camera path would use). E: NEE term of the first vertex (below), 0
   // elsewhere. rough / stored: the vertex's class and whether a photon was stored at it (then the merge
-  // there is a technique for every longer path through it). growth: radius_growth_mis(): a rough vertex
-  // adds one rough camera vertex in front of every merge further towards the light.
-  void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, float E,
-               float growth = radius_growth_mis()) {
+  // there is a technique for every longer path through it).
+  void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, float E) {
     const float g = mis(c_out / w_fwd);
     A = g * (mis(w_rev) * A + E);
     if (rough) {
-      B = g * growth * (mis(w_rev) * B + (stored ? 1.0f : 0.0f));
+      B = g * (mis(w_rev) * B + (stored ? 1.0f : 0.0f));
       b_valid = b_valid || stored;
     } else {
       B = g * mis(w_rev) * B;

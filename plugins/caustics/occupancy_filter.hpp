@@ -1,12 +1,11 @@
 // A conservative "could any photon lie within r of q?" test in front of the photon kd-tree.
-// On the caustic scenes most camera lookups find no photon at all (16 iterations at 640x360, seed 1:
-// sphere-point 98 %, sphere-area 98 %, glasses 98 %, ring 95 %, pool 82 %), and the tree needs ~16 node
-// visits and two leaf scans to find that out. The filter answers with one hash and one bit: a bit set
-// per grid cell (edge 2 reach) that some photon's box [p - reach, p + reach] overlaps, hashed into a
-// bit array. A photon within r <= reach of q has q inside its box, so q's cell is marked: the filter
-// never hides a photon; hash collisions only let a lookup through to the tree. Queries with r > reach
-// always go through. `reach` comes from the radii the previous iteration's lookups used
-// (RadiusHistogram), so the filter costs nothing in accuracy and changes no result.
+// On the caustic scenes most camera lookups find no photon at all, and the tree needs a descent and leaf
+// scans to find that out. The filter answers with one hash and one bit: a bit set per grid cell (edge
+// 2 reach) that some photon's box [p - reach, p + reach] overlaps, hashed into a bit array. A photon
+// within r <= reach of q has q inside its box, so q's cell is marked: the filter never hides a photon;
+// hash collisions only let a lookup through to the tree. Queries with r > reach always go through.
+// `reach` comes from the radii the previous iteration's lookups used (RadiusHistogram), so the filter
+// costs nothing in accuracy and changes no result.
 #pragma once
 
 #include <algorithm>
@@ -31,9 +30,8 @@ class OccupancyFilter {
 
   // Marks the cells around n positions, position(i) for i in [0, n). reach <= 0 (or not finite), or no
   // position: no filter, every query goes through. Large maps mark in two halves concurrently, the
-  // second into a bit array of its own that is then ORed in: the same bits whatever runs where. (The
-  // pool's ~80,000 photons: ~6 ms a pass on one thread, serial time the camera pass waits for; one
-  // array with atomic ORs on two threads took longer.)
+  // second into a bit array of its own that is then ORed in: the same bits whatever runs where. (Marking
+  // is serial time the camera pass waits for; one array with atomic ORs from two threads is slower.)
   template <class Position>
   void build(size_t n, float reach, Position &&position, const ParallelFor &parallel = serial_for) {
     bits_.clear();
@@ -45,13 +43,10 @@ class OccupancyFilter {
     Vec3f lo(kInfinity);
     for (size_t i = 0; i < n; ++i) lo = min(lo, position(i));
     for (int a = 0; a < 3; ++a) origin_[a] = double(lo[a]) - grown;
-    // Cells of edge 2 reach: a photon marks <= 8. Lookups let through on sphere-point (8 iterations, of
-    // 2.0 M asked; 98 % of them find nothing): 19 % with 64 bits per photon; 18 % with edge `reach`
-    // (<= 27 cells, 3x the build time: 2.6 ms a pass at 25,000 photons); 24 % with 32 bits, 15 % with
-    // 128, 12 % with 512 (hash collisions where photons are sparse). On the pool, 61 % (its floor is
-    // covered). With the blocked layout below (one hashed line per 8x8x8 cells): 26 % on sphere-point
-    // (23.5 % with one hashed bit per cell; 16 iterations), 66 % on the pool (66 %), for a line that
-    // neighbouring lookups share instead of a cache miss each.
+    // Cells of edge 2 reach: a photon marks <= 8. Finer cells mark more (up to 27 at edge `reach`), for
+    // a longer build and hardly fewer lookups let through (docs/performance.md §6). 64 bits per photon
+    // keep hash collisions, which let lookups through, rare where photons are sparse. The blocked layout
+    // below puts neighbouring cells on one line, which neighbouring lookups share.
     inv_cell_ = 1 / (2 * grown);
     lines_ = (n + 7) / 8;  // 64 bits per photon
     bits_.assign(lines_, Line{});
@@ -98,7 +93,7 @@ class OccupancyFilter {
   // Blocked layout: the 8x8x8 cells of a block share one 64-byte line, chosen by the block's hash
   // mapped onto the lines by a multiply-shift (Lemire; no power-of-two size needed); the cell's place
   // in its block picks the bit. Neighbouring lookups (neighbouring pixels) then read the same line,
-  // where one hashed bit per cell cost a cache miss per lookup: 21 % of sphere-point's merge time.
+  // where one hashed bit per cell would cost a cache miss per lookup.
   struct alignas(64) Line {
     uint64_t w[8] = {};
   };

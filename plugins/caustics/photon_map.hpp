@@ -5,17 +5,10 @@
 // one thread, the subtrees below are built concurrently on disjoint ranges, so any thread count gives
 // the same tree. It is built over 16-byte keys (position, index), which nth_element moves faster than
 // photons. Lookups scan an array of positions and load a photon's other 32 bytes only when it lies
-// within r: on the pool a lookup that passes the occupancy filter tests ~15 photons to find ~0.4
-// (bench/photon_map_bench.cpp models it). A hash grid of cell edge 4 r (prototyped in that benchmark)
-// was only ~20 % faster there and needs one radius per pass. In the renderer, for passes whose radii
-// stay within a factor ~3 (the pool, sphere-point), grids of cell edge 2 reach were no faster either:
-// one hashed bucket per cell (pool time B/A 1.001, 60 B per photon), 4x4x4-cell blocks in a hash table
-// with photons in block order (1.009, 75 B), the same with 16-bit cell offsets and no occupancy filter
-// (pool 0.971 through its faster build, sphere-point 1.075): lookups there are bound by one cache miss
-// per structure they touch (table, cell ranges, positions), as the tree's are. Also tried: every leaf
-// at one depth, the descent on node indices alone, positions in 8-wide blocks compared 4 at a time:
-// 2.4 % fewer instructions per pool iteration, but coherent (scanline) lookups in that benchmark ran
-// 25-35 % slower and the pool's render time rose (B/A 1.065 over 5 runs), so the layout stayed.
+// within r, since most photons a leaf scan tests lie outside it (bench/photon_map_bench.cpp models the
+// pool's lookups). Hash grids and other layouts of the map were no faster in the renderer: a lookup is
+// bound by one cache miss per structure it touches (table, cell ranges, positions), whatever the index
+// (docs/performance.md §6).
 #pragma once
 
 #include <algorithm>
@@ -43,8 +36,8 @@ inline uint32_t encode_octahedral(const Vec3f &v) {
     const float oy = (1 - std::abs(x)) * (y >= 0 ? 1.0f : -1.0f);
     x = ox, y = oy;
   }
-  // Round to nearest by adding one half and truncating (the value is >= 0): std::lround is a libm call
-  // (0.4 % of the solver's instructions on the pool).
+  // Round to nearest by adding one half and truncating (the value is >= 0): std::lround is a libm call,
+  // and this runs for every photon stored.
   const auto q = [](float f) { return uint32_t(clamp(f * 0.5f + 0.5f, 0.0f, 1.0f) * 65535.0f + 0.5f); };
   return q(x) | (q(y) << 16);
 }

@@ -84,25 +84,4 @@ void PhotonPass::release() {
   photons_ = std::vector<Photon>();
 }
 
-void learn_area_pdfs(EmitterSet &emitters, const nimbus_host_lights_v1_t *lights,
-                     const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h) {
-  struct Job {
-    EmitterSet *emitters;
-    const nimbus_host_lights_v1_t *lights;
-    const nimbus_host_t *h;
-  } job{&emitters, lights, h};
-  const auto fn = [](const nimbus_thread_ctx_t *, uint64_t b, uint64_t e, void *user) {
-    const Job &j = *static_cast<Job *>(user);
-    for (uint64_t l = b; l < e; ++l) {
-      Emitter &em = (*j.emitters)[l];
-      if (em.kind != EmitterKind::Area) continue;
-      const float u[4] = {0.5f, 0.5f, 0.25f, 0.5f};
-      nimbus_light_emission_t out{};
-      j.lights->sample_emission(j.h, uint32_t(l), u, &out);
-      em.pdf_pos = out.pdf_pos > 0 && std::isfinite(out.pdf_pos) ? out.pdf_pos : 0.0f;
-    }
-  };
-  tasks->parallel_for(h, emitters.size(), 64, fn, &job);
-}
-
 }  // namespace nimbus::caustics

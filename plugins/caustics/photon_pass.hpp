@@ -1,14 +1,14 @@
 // One photon pass (solver spec section 5): photon paths traced as host tasks into per-task chunks,
 // concatenated in task order (photon indices never depend on threads), and the photon map rebuilt. The
-// buffers keep their memory from pass to pass: allocated anew, their first touches (page faults) are a
-// large share of the map build.
+// buffers keep their memory from pass to pass, so a pass does not pay first-touch page faults on freshly
+// allocated pages.
 #pragma once
 
 #include <nimbus/nimbus.hpp>
 
 #include <vector>
 
-#include <nimbus/cpp/per_worker.hpp>
+#include <nimbus/nimbus.hpp>
 
 #include "emission_target.hpp"
 #include "emitters.hpp"
@@ -41,9 +41,5 @@ class PhotonPass {
   std::vector<Photon> photons_;      // the tasks' photons in task order
   PhotonKdTree map_;
 };
-
-// P_pos of area lights (uniform area sampling: a constant), from one sample_emission per light.
-void learn_area_pdfs(EmitterSet &emitters, const nimbus_host_lights_v1_t *lights,
-                     const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h);
 
 }  // namespace nimbus::caustics

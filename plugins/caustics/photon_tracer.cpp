@@ -61,7 +61,7 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
   if (const EmissionCone cone = infinite ? EmissionCone() : emitters_.cone(light, org); cone.active()) {
     dir0 = cone.sample(ue[2], ue[3]);
     pdf_dir = cone.pdf();
-    Le = emitted(light, em, es, dir0);
+    Le = emitted(light, es, dir0);
   }
   const float pdf_pos = infinite ? em.pdf_pos : es.pdf_pos;
   const float cos_e = delta_pos || infinite ? 1.0f : std::abs(dot(n_e, dir0));
@@ -149,24 +149,11 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
 }
 
 // Radiance (area) or intensity (point, spot) that finite light `light` emits from es.org along w.
-Rgb PhotonTracer::emitted(uint32_t light, const Emitter &em, const nimbus_light_emission_t &es,
-                          const Vec3f &w) const {
-  const nimbus_host_t *h = h_;
-  if (em.kind == EmitterKind::Point) return Rgb::load(es.Le);  // isotropic
-  if (em.kind == EmitterKind::Spot) {
-    // The spot's falloff towards w: its intensity / d^2 as seen from a receiver at unit distance.
-    nimbus_interaction_t at{};
-    (Vec3f::load(es.org) + w).store(at.p);
-    const float u[2] = {0.5f, 0.5f};
-    nimbus_light_incident_t li{};
-    svc_.lights->sample_incident(h, light, &at, u, &li);
-    return li.pdf > 0 ? Rgb::load(li.L) * length_squared(Vec3f::load(at.p) - Vec3f::load(es.org)) : Rgb(0);
-  }
-  const nimbus_interaction_t on_light = emission_point(light, es);
-  float wo[3], L[3];
+Rgb PhotonTracer::emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w) const {
+  float wo[3], Le[3];
   w.store(wo);
-  svc_.lights->eval_emitted(h, &on_light, wo, L);
-  return Rgb::load(L);
+  svc_.lights->eval_emission(h_, light, es.org, es.n, wo, Le);
+  return Rgb::load(Le);
 }
 
 // E of the first photon vertex: how NEE from it would have sampled the emission point.

@@ -9,7 +9,7 @@
 
 #include <nimbus/cpp/math.hpp>
 #include <nimbus/cpp/path_services.hpp>
-#include <nimbus/cpp/per_worker.hpp>
+#include <nimbus/nimbus.hpp>
 
 #include "emitters.hpp"
 #include "photon_map.hpp"
@@ -56,7 +56,7 @@ class PhotonTracer {
              PhotonChunk &out) const;
 
  private:
-  Rgb emitted(uint32_t light, const Emitter &em, const nimbus_light_emission_t &es, const Vec3f &w) const;
+  Rgb emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w) const;
   float first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
                          const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const;
 

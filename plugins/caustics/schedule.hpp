@@ -13,12 +13,10 @@ inline constexpr float kRadiusPixels = 1.5f;  // initial merge radius in pixel f
 inline constexpr float kRadiusAlpha = 0.75f;  // Knaus-Zwicker alpha: r^2 ~ j^(alpha - 1)
 // Useful pixels (spec 5): a pixel is useful iff Mp > tau Tp, Mp its MIS-weighted merge light and Tp its
 // beauty. Two thresholds, one per decision. The photon budget counts the pixels where merges bring over
-// 10 % of the light, not the spec's 1 % (the LPM constant), by the spec's own rule for tau ("revisit if
-// overhead above target"): measured side by side on 2 cores (docs/performance.md §4), 0.1 against 0.01
-// gave u 0.25 -> 0.11 on sphere-point, 0.26 -> 0.13 on sphere-area, 0.46 -> 0.40 on the ring, time per
-// iteration 0.92 / 0.91 / 0.98 of before, at 1.11 / 1.12 / 1.17x the variance at equal time. Backing off
-// (no photons for a while) still needs no pixel over 1 %: a caustic that is faint everywhere keeps its
-// photons, at N_min per pass.
+// 10 % of the light, not the spec's 1 % (the LPM constant): by the spec's own rule for tau ("revisit if
+// overhead above target") it trades some equal-time variance for a lower cost per iteration
+// (docs/performance.md §4). Backing off (no photons for a while) still needs no pixel over 1 %: a caustic
+// that is faint everywhere keeps its photons, at N_min per pass.
 inline constexpr double kBudgetThreshold = 0.1;
 inline constexpr double kIdleThreshold = 0.01;
 inline constexpr uint32_t kMaxIdleLevel = 8;
@@ -42,40 +40,28 @@ struct ScheduleConfig {
   uint64_t n_max = uint64_t(1) << 22;  // photon paths per pass at u = 1 (spec 5)
   // Cap on photon paths per pass relative to the camera paths of one iteration (0: none):
   // N_max = min(2^22, ratio N_cam). Every camera pass evaluates each stored photon in ~pi 1.5^2 lookups
-  // (one host BSDF call each) and one photon path costs about 0.7 camera paths, so photon work per
-  // iteration scales with this ratio. Measured on 2 cores at 640x360 (docs/performance.md): ratio 2 cost
-  // +122 % per iteration on the pool scene (u = 0.6) and +70 % on the ring; the uncapped 2^22 more than
-  // doubled render time. With 0.5 the photon work stays near a third of the camera work even when every
-  // pixel is useful; noise at equal time is what matters, and more iterations per second make up for
-  // smaller maps. Variance x seconds at 32 iterations (bench/efficiency.py, docs/performance.md §4), ratio
-  // 0.25 / 0.5 / 1: pool 0.44 / 0.34 / 0.30, ring 0.043 / 0.026 / 0.017, sphere-point 0.051 / 0.051 /
-  // 0.056, sphere-area 0.045 / 0.043 / 0.050, glasses 0.22 / 0.20 / 0.26: 0.5 is near the optimum on
-  // all five. Metropolis guiding (next issue) wants large batches: revisit the cap with it.
-  // The probe (2^16 paths) is not capped, so small images still interleave several camera passes per
-  // photon pass.
+  // (one host BSDF call each), so photon work per iteration scales with this ratio. Noise at equal time
+  // is what matters: more iterations per second make up for smaller maps. 0.5 sits near the equal-time
+  // optimum on the caustic scenes: 0.25 does worse on the ring, 1.0 on sphere-point, sphere-area and
+  // glasses (docs/performance.md §6). Metropolis guiding (next issue) wants large batches: revisit the
+  // cap with it. The probe (2^16 paths) is not capped, so small images still interleave several camera
+  // passes per photon pass.
   double photon_paths_per_camera_path = 0.5;
   uint64_t probe = uint64_t(1) << 16;  // the first pass
   // N_min never below this (the spec's N_min = 2^22 / 64 = 2^16 is kept for the probe). Small caustics
   // (a useful-pixel ratio near 0) get N_min paths per pass, so the floor sets their photon density. The
   // spec's 2^16 assumes photons emitted over each light's whole range, most of them missing every
-  // caustic-forming surface (uniform emission stored ~1 photon per 60 paths on sphere-point). Photons are
-  // now aimed at the sharp surfaces (emitters.hpp) and 2^14 paths store 4-10x more photons per pass than
-  // 2^16 did. Measured at 640x360 on 2 cores (docs/performance.md), 2^14 against 2^16: overhead per
-  // iteration over nimbus.pt 33 / 42 / 38 / 26 % against 97 / 81 / 57 / 65 % on sphere-point /
-  // sphere-area / ring / glasses; relMSE at equal time the same on sphere-point and glasses, ~15 % lower
-  // on sphere-area (more iterations), 1.5x higher on the ring (still ~1000x below nimbus.pt's).
+  // caustic-forming surface. Aimed at the sharp surfaces (emitters.hpp), 2^14 paths store more photons
+  // than 2^16 unaimed ones, and 2^16 would multiply the overhead without lowering the equal-time error
+  // of small caustics (docs/performance.md §6).
   uint64_t min_floor = 16384;
   // Cap on the photons a pass stores, relative to the camera paths of one iteration (0: none), applied
   // through the photons stored per path in the previous pass. Lookups and the map build scale with the
-  // stored photons, not with the paths: the pool stores ~1.06 photons per path, the other scenes
-  // 0.3-0.85, and its lookups alone cost ~28 % of nimbus.pt's time at 0.5 paths per camera path
-  // (docs/performance.md §4). 1/6 bound on the pool only (~37,000 stored photons per pass at 640x360
-  // instead of ~74,000): measured side by side on 2 cores, its time per iteration fell by 16 % (overhead
-  // 78 % -> 42 %, the others unchanged) at 1.4-1.6x its variance at equal time. That left the pool at
-  // 42-48 %, above the spec's 40 % target, so by the spec's rule for N_max ("revisit if overhead above
-  // target") the cap is now 1/8 (~29,000 photons): time per iteration 0.95 of 1/6's, overhead 47 % ->
-  // 39 %, at 1.24x the variance at equal time (1/10: 0.92, 35 %, 1.49x). The other scenes store under
-  // 1/8 per camera path. 0 removes the cap (best equal-time error).
+  // stored photons, not with the paths: where nearly every photon path stores a photon (the pool) the
+  // overhead would exceed the spec's 40 % target, so by the spec's rule for N_max ("revisit if overhead
+  // above target") a pass stores at most 1/8 photon per camera path, at some cost in equal-time variance
+  // (docs/performance.md §4; the tighter 1/10 in §6). Scenes that store less are not affected. 0 removes
+  // the cap (best equal-time error).
   double stored_photons_per_camera_path = 1.0 / 8;
   uint64_t camera_paths = 1;  // camera paths per iteration (the render region's pixels)
 

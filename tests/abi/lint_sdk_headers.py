@@ -3,7 +3,7 @@
 
     lint_sdk_headers.py [DIR | HEADER.h ...]     (default: sdk/include/nimbus)
 
-The rule, precisely (a summary is in the conventions comment of version.h):
+The rule, precisely (a summary is in the conventions comment of base.h):
 
 "Own comment" of a declaration: the comment block directly above it (no blank or preprocessor line in
 between), comments inside it, and comments starting on its last line after it.
@@ -20,7 +20,7 @@ P  Every pointer parameter of those (declared with '*', as an array, which decay
    a pointer typedef) is named and covered by a clause of the own comment or of the struct's header
    comment. Exempt: receivers (`const nimbus_host_t *`, `const nimbus_plugin_t *`,
    `const nimbus_thread_ctx_t *`, also spelt `const struct nimbus_host *` ...), borrowed by the
-   convention version.h states, and parameters of function-pointer typedef type (code, not data; their
+   convention base.h states, and parameters of function-pointer typedef type (code, not data; their
    typedef carries its own tag).
 R  A returned pointer is described by `host-owned` or `plugin-owned` in the own comment: it outlives
    the call, so neither `borrowed` nor `out` can describe it.
@@ -47,7 +47,8 @@ THREAD_LIKE = re.compile(r"\[[^\[\]]*thread[^\[\]]*\]")
 THREAD_TAG = re.compile(r"\[(main|render|any)-thread(\s*,\s*!?[A-Za-z][\w-]*)*\]")
 RECEIVER = re.compile(r"^const\s+(struct\s+nimbus_host\b|nimbus_host_t\b|struct\s+nimbus_plugin\b|"
                       r"nimbus_plugin_t\b|struct\s+nimbus_thread_ctx\b|nimbus_thread_ctx_t\b)\s*\*")
-# version.h must keep stating the receiver convention the P rule relies on.
+# The conventions comment (base.h; version.h in SDKs up to 1.1) must keep stating the receiver convention
+# the P rule relies on.
 RECEIVER_CONVENTION = ("nimbus_host_t", "nimbus_plugin_t", "nimbus_thread_ctx_t")
 
 
@@ -110,13 +111,18 @@ def lint(headers) -> list[str]:
                                       "word (borrowed, out, caller storage, host-owned, plugin-owned)")
         for d in h.fn_typedefs + h.prototypes:
             check_function(d, d.names[0], "", errors, f"{rel}:{d.line}")
-        if os.path.basename(h.path) == "version.h":
+        if os.path.basename(h.path) == conventions_header(os.path.dirname(h.path)):
             first = h.comments[0].text if h.comments else ""
             missing = [t for t in RECEIVER_CONVENTION if t not in first]
             if missing or "borrowed" not in first:
                 errors.append(f"{rel}: the conventions comment must state that receivers "
                               f"({', '.join(RECEIVER_CONVENTION)}) are borrowed; the lint exempts them on that basis")
     return errors
+
+
+def conventions_header(directory: str) -> str:
+    """The header whose first comment states the conventions: base.h since SDK 1.2, version.h before."""
+    return "base.h" if os.path.exists(os.path.join(directory, "base.h")) else "version.h"
 
 
 def header_paths(args: list[str]) -> list[str]:

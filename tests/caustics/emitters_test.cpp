@@ -18,6 +18,42 @@ using test::Pcg32;
 
 float uniform(Pcg32 &rng) { return rng.uniform(); }
 
+// The host's emission densities for the lights of these tests (the lights service's pdf_emission, whose
+// own agreement with sample_emission tests/lights checks), by light index: a point light, a spot of
+// half angle 0.5 rad along (-1, 0, -1), a one-sided area light of area 1/4, and suns.
+float pdf_dir_of(uint32_t light, const Vec3f &n, const Vec3f &w) {
+  switch (light) {
+    case 0:
+      return kUniformSpherePdf;
+    case 1:
+      return dot(w, normalize(Vec3f(-1, 0, -1))) >= std::cos(0.5f) ? uniform_cone_pdf(std::cos(0.5f)) : 0.0f;
+    default:
+      return cosine_hemisphere_pdf(dot(n, w));
+  }
+}
+const nimbus_host_lights_v1_t kStubLights = [] {
+  nimbus_host_lights_v1_t t{};
+  t.struct_size = sizeof(t);
+  t.pdf_emission = [](const nimbus_host_t *, uint32_t light, const float *, const float n[3],
+                      const float dir[3], float *pdf_pos, float *pdf_dir) {
+    *pdf_pos = light == 2 ? 4.0f : 1.0f;
+    *pdf_dir = pdf_dir_of(light, Vec3f::load(n), Vec3f::load(dir));
+  };
+  return t;
+}();
+// A sun's direction density: its uniform cone (cos of the half angle in cos_half, 1: a delta direction).
+float g_sun_cos_half = 1;
+const nimbus_host_lights_v1_t kStubSun = [] {
+  nimbus_host_lights_v1_t t{};
+  t.struct_size = sizeof(t);
+  t.pdf_emission = [](const nimbus_host_t *, uint32_t, const float *, const float *, const float *,
+                      float *pdf_pos, float *pdf_dir) {
+    *pdf_pos = 123.0f;  // the host's disk: the solver uses its own
+    *pdf_dir = g_sun_cos_half >= 1 ? 1.0f : uniform_cone_pdf(g_sun_cos_half);
+  };
+  return t;
+}();
+
 TEST(CausticsEmitters, ConeSamplerMatchesItsPdf) {
   // A tilted cone of ~34 degrees (a 0.5 sphere 0.9 away), against the pdf over the whole sphere.
   const Vec3f from(0.3f, -0.2f, 0.1f), center = from + normalize(Vec3f(0.4f, 0.7f, -0.6f)) * 0.9f;
@@ -120,10 +156,10 @@ TEST(CausticsEmitters, CameraSideDensityEqualsPhotonSide) {
   lights[1].kind = EmitterKind::Spot, lights[1].power = 1, lights[1].position = Vec3f(2, 0, 2);
   lights[1].flags = NIMBUS_LIGHT_DELTA_POSITION;
   lights[1].axis = normalize(Vec3f(-1, 0, -1)), lights[1].cos_theta_e = std::cos(0.5f);
-  lights[2].kind = EmitterKind::Area, lights[2].power = 1, lights[2].pdf_pos = 4;
+  lights[2].kind = EmitterKind::Area, lights[2].power = 1;
   lights[2].flags = NIMBUS_LIGHT_AREA;
   EmitterSet set;
-  set.build(lights, Vec3f(0, 0, 0), 10);
+  set.build(lights, Vec3f(0, 0, 0), 10, nullptr, &kStubLights);
   // Before the probe the target is the scene's sphere: lights inside it emit as the host does.
   EXPECT_FLOAT_EQ(set.lp(0, Vec3f(-2, 0, 2), Vec3f(), Vec3f(0, 0, 1), Vec3f()), 0.5f * kUniformSpherePdf);
   EXPECT_FALSE(set.cone(2, Vec3f(0, 0, 3)).active());
@@ -162,8 +198,9 @@ TEST(CausticsEmitters, SunRectangleCoversTheBox) {
     sun.kind = EmitterKind::Sun, sun.power = 1, sun.axis = normalize(Vec3f(-0.35f, 0.55f, -1.0f));
     sun.flags = NIMBUS_LIGHT_INFINITE | (delta ? NIMBUS_LIGHT_DELTA_DIRECTION : 0u);
     sun.cos_theta_e = delta ? 1.0f : std::cos(0.5f * 0.53f * kPi / 180);
+    g_sun_cos_half = sun.cos_theta_e;
     EmitterSet set;
-    set.build(lights, Vec3f(0, 0, 0), 20);
+    set.build(lights, Vec3f(0, 0, 0), 20, nullptr, &kStubSun);
     const Vec3f lo(-2, -1, -0.08f), hi(2, 1, 0.08f), center(0.1f, 0, 0);
     const float radius = 1.05f * length(hi - center);
     set.set_target(center, radius);  // no box: the disk

@@ -30,7 +30,6 @@ struct SyntheticPath {
   double n_omega = 1;         // NEE solid-angle density incl. selection (area, infinite)
   double pmf = 1;             // NEE selection (delta lights)
   double area = 1, neff = 1;  // pi r_a^2 (first rough vertex) and the photon path count
-  double kappa = 1;           // radius growth per rough vertex: r_s = r_a kappa^(c_s - 1)
   uint32_t d_photon = kPhotonMaxVertices;
 
   bool finite() const { return light == LightKind::Area || light == LightKind::Point; }
@@ -85,9 +84,6 @@ SyntheticPath random_path(std::mt19937_64 &g) {
   p.pmf = log_uniform(g, 1e-3, 1);
   p.area = log_uniform(g, 1e-3, 1e3);
   p.neff = log_uniform(g, 1, 1e6);
-  // The production constant, and random growth factors so the radius-ratio bookkeeping is exercised.
-  p.kappa =
-      std::uniform_real_distribution<double>(0, 1)(g) < 0.3 ? double(kRadiusGrowth) : log_uniform(g, 1, 4);
   p.d_photon = std::uniform_real_distribution<double>(0, 1)(g) < 0.3
                    ? std::uniform_int_distribution<uint32_t>(2, 6)(g)
                    : kPhotonMaxVertices;
@@ -105,17 +101,8 @@ struct ClosedForm {
   }
 };
 
-// Rough vertices among x_1 .. x_s.
-uint32_t rough_count(const SyntheticPath &p, uint32_t s) {
-  uint32_t c = 0;
-  for (uint32_t j = 1; j <= s; ++j) c += p.rough(j);
-  return c;
-}
-
-// pi r_s^2 at lookup vertex x_s.
-double area_at(const SyntheticPath &p, uint32_t s) {
-  return p.area * std::pow(p.kappa, 2.0 * (double(rough_count(p, s)) - 1));
-}
+// pi r_s^2 at lookup vertex x_s: every lookup of a path uses its first rough vertex's radius.
+double area_at(const SyntheticPath &p, uint32_t) { return p.area; }
 
 // The merge at s is a technique (E1-E4; lookups at every rough vertex).
 bool merge_eligible(const SyntheticPath &p, uint32_t s) {
@@ -189,8 +176,7 @@ Weights production(const SyntheticPath &p) {
     const bool stored = rough && had_sharp && (k - j) <= p.d_photon;
     at[j] = PhotonAt{stored, pm.A, pm.B, pm.b_valid, prev_rough};
     if (rough && prev_rough) break;
-    pm.scatter(float(p.cos_prev[j]), float(p.w_light[j]), float(p.w_cam[j]), rough, stored, E,
-               radius_growth_mis(float(p.kappa)));
+    pm.scatter(float(p.cos_prev[j]), float(p.w_light[j]), float(p.w_cam[j]), rough, stored, E);
     prev_rough = rough;
     had_sharp = had_sharp || !rough;
   }
@@ -213,8 +199,8 @@ Weights production(const SyntheticPath &p) {
       break;
     }
     const bool lookup = cm.append(p.rough(j));
-    // The plugin's radius: r_a at the first rough vertex, times kappa at each further one.
-    if (lookup) area = cm.rough_count == 1 ? float(p.area) : area * float(p.kappa * p.kappa);
+    // The plugin's radius: r_a, fixed at the first rough vertex.
+    if (lookup && cm.rough_count == 1) area = float(p.area);
     if (lookup && at[j].stored && p.lp > 0) {
       const PhotonAt &ph = at[j];
       w.wm[j] = merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
@@ -308,7 +294,7 @@ TEST(CausticsMis, SunThroughWaterAfterSeveralDiffuseBouncesHasAMergeTechnique) {
     if (j >= 2) cm.arrive(cos_);
     const bool lookup = cm.append(rough[j - 1]);
     lookups += lookup;
-    if (lookup) r = cm.rough_count == 1 ? 1.0f : r * kRadiusGrowth;
+    if (lookup && cm.rough_count == 1) r = 1.0f;
     const bool delta = !rough[j - 1];
     cm.scatter(cos_, delta ? 1.0f : diffuse_pdf, delta ? 1.0f : diffuse_pdf, lookup, j, eta * r * r);
   }

@@ -137,9 +137,11 @@ double integrate_pdf_cell(const DirectionPdf &pdf, double theta0, double theta1,
 
 std::string ChiSquareResult::describe() const {
   char buf[256];
-  std::snprintf(buf, sizeof buf, "p = %.3g, chi2 = %.1f, dof = %d, pdf integral = %.5f, failed = %.5f%s%s",
-                p_value, statistic, dof, pdf_integral, failed_fraction, error.empty() ? "" : ", ",
-                error.c_str());
+  std::snprintf(
+      buf, sizeof buf,
+      "p = %.3g, chi2 = %.1f, dof = %d, worst cell %.2f sigma, pdf integral = %.5f, failed = %.5f%s%s",
+      p_value, statistic, dof, worst_sigma, pdf_integral, failed_fraction, error.empty() ? "" : ", ",
+      error.c_str());
   return buf;
 }
 
@@ -176,6 +178,19 @@ ChiSquareResult chi_square_test(const DirectionSampler &sample, const DirectionP
   result.failed_fraction = observed[cells] / config.samples;
   expected[cells] = std::max(0.0, 1 - integral) * config.samples;
 
+  const ChiSquareResult counted = chi_square_counts(observed, expected, config.min_expected);
+  result.statistic = counted.statistic;
+  result.dof = counted.dof;
+  result.worst_sigma = counted.worst_sigma;
+  result.p_value = counted.p_value;
+  result.error = counted.error;
+  return result;
+}
+
+ChiSquareResult chi_square_counts(const std::vector<double> &observed, const std::vector<double> &expected,
+                                  double min_expected) {
+  ChiSquareResult result;
+  const int cells = static_cast<int>(expected.size()) - 1;
   // Pool every category expecting fewer than min_expected samples (and, if the pool is still too small,
   // the next smallest ones) into one; everything else contributes its own term.
   std::vector<int> order(cells + 1);
@@ -184,11 +199,13 @@ ChiSquareResult chi_square_test(const DirectionSampler &sample, const DirectionP
   double pool_obs = 0, pool_exp = 0, chi2 = 0;
   int dof = 0;
   for (int i : order) {
-    if (expected[i] < config.min_expected || (pool_obs + pool_exp > 0 && pool_exp < config.min_expected)) {
+    if (expected[i] < min_expected || (pool_obs + pool_exp > 0 && pool_exp < min_expected)) {
       pool_obs += observed[i];
       pool_exp += expected[i];
     } else {
       chi2 += square(observed[i] - expected[i]) / expected[i];
+      result.worst_sigma =
+          std::max(result.worst_sigma, std::abs(observed[i] - expected[i]) / std::sqrt(expected[i]));
       ++dof;
     }
   }
@@ -198,6 +215,7 @@ ChiSquareResult chi_square_test(const DirectionSampler &sample, const DirectionP
   }
   if (pool_exp > 0) {
     chi2 += square(pool_obs - pool_exp) / pool_exp;
+    result.worst_sigma = std::max(result.worst_sigma, std::abs(pool_obs - pool_exp) / std::sqrt(pool_exp));
     ++dof;
   }
   dof -= 1;  // the total is fixed; no parameters were fitted

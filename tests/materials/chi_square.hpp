@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nimbus/cpp/math.hpp>
 #include "test_helpers.hpp"
@@ -28,6 +29,9 @@ struct ChiSquareResult {
   double p_value = 0;
   double statistic = 0;
   int dof = 0;
+  // The largest |observed - expected| / sqrt(expected) of a category (the pool of sparse ones counts as
+  // one): how many standard deviations the worst cell is off.
+  double worst_sigma = 0;
   double pdf_integral = 0;  // of the pdf over the sphere
   double failed_fraction = 0;
   std::string error;  // non-empty: rejected outright (e.g. samples where the pdf integrates to zero)
@@ -40,6 +44,12 @@ using DirectionPdf = std::function<double(const Vec3f &)>;
 
 ChiSquareResult chi_square_test(const DirectionSampler &sample, const DirectionPdf &pdf,
                                 const ChiSquareConfig &config);
+
+// The chi-square statistic of observed against expected counts per category (same length), pooling the
+// categories that expect fewer than `min_expected` as chi_square_test does; fills statistic, dof, p_value
+// or error.
+ChiSquareResult chi_square_counts(const std::vector<double> &observed, const std::vector<double> &expected,
+                                  double min_expected);
 
 // Per-test significance so that `tests` independent tests together reject a correct sampler with
 // probability `alpha` (Sidak correction).

@@ -89,7 +89,7 @@ TEST(RenderJob, FingerprintOfASceneWithoutOtherFiles) {
   RenderOptions options;
   options.elements = {"albedo"};
   const RenderJob job = resolve(scene, options);
-  EXPECT_EQ(job.fingerprint("nimbus.caustics", "nimbus.lights.power"),
+  EXPECT_EQ(job.fingerprint("nimbus.caustics", "nimbus.lights.power", {{"caustics", "on"}}),
             "scene_hash=" + scene.sources.at(0).hash +
                 "\nresolution=8x4\nregion=0,0,0,0\nseed=3\nintegrator=nimbus.caustics\n"
                 "light_sampler=nimbus.lights.power\nfilter=box\nmax_depth=16\noptions=caustics:on\n"
@@ -110,7 +110,7 @@ TEST(RenderJob, FingerprintCoversIncludedFilesAndMeshes) {
   const auto fingerprint = [&] {
     const auto scene = parse_scene_file((dir / "main.yaml").string());
     EXPECT_TRUE(scene.ok()) << (scene.ok() ? "" : scene.error().message);
-    return scene.ok() ? resolve(scene.value(), {}).fingerprint("nimbus.pt", "nimbus.lights.power") : "";
+    return scene.ok() ? resolve(scene.value(), {}).fingerprint("nimbus.pt", "nimbus.lights.power", {}) : "";
   };
   const std::string before = fingerprint();
   EXPECT_NE(before.find("\nfile:parts/room.yaml="), std::string::npos) << before;

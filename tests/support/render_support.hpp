@@ -50,7 +50,7 @@ class SceneRenderer {
     if (!desc.ok()) return {};
     SceneDesc d = std::move(desc.value());
     if (!r.integrator.empty()) d.render.integrator = r.integrator;
-    for (const auto &[k, v] : r.options) d.render.options[k] = v;
+    for (const auto &[k, v] : r.options) d.render.options.push_back({k, v, "request option " + k, ""});
     RenderOptions opt;
     if (r.iterations) opt.iterations = r.iterations;  // 0: the scene decides
     opt.seed = r.seed;

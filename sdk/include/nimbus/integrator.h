@@ -14,8 +14,9 @@
 extern "C" {
 #endif
 
-/* A scene option meant for the integrator, e.g. {"caustics", "on"}. key and value: host-owned until
- * end_render. */
+/* An option meant for the integrator, e.g. {"caustics", "on"}. key and value: host-owned until
+ * end_render. Since 1.2, for a plugin that declares options (nimbus_option_list_t), the host passes each
+ * declared option once, validated, with the scene's or command line's value or else the default. */
 typedef struct nimbus_option {
   const char *key;
   const char *value;

@@ -31,6 +31,9 @@ typedef struct nimbus_light_info {
   float axis[3];     /* main emission direction (area, spot, sun); zero if none */
   float cos_theta_o; /* cone of normals around axis: cos of half angle (-1: all directions) */
   float cos_theta_e; /* emission spread beyond the normal cone: cos (0: hemisphere per normal) */
+  /* Since 1.2: total emitting surface area (area lights; 0 for other lights). Written only when the
+   * caller's header.struct_size covers it; hosts before 1.2 leave it as the caller zero-filled it. */
+  float area;
 } nimbus_light_info_t;
 
 typedef struct nimbus_light_incident {
@@ -82,6 +85,24 @@ typedef struct nimbus_host_lights_v1 {
    * storage; out->pdf_pos = 0 on failure. */
   void (*sample_emission)(const nimbus_host_t *host, uint32_t light, const float u[4],
                           nimbus_light_emission_t *out);
+  /* Since 1.2 (absent from a 1.1 host's table: check NIMBUS_HAS_MEMBER before calling).
+   * [any-thread] What light `light` emits from point p on it along the unit direction dir, as
+   * sample_emission reports it in Le: radiance for area lights (p on the surface, n its normal there
+   * as sample_emission's out->n or a hit's ng; zero towards the back of a one-sided light), intensity
+   * for point and spot lights (with the spot's falloff), the radiance travelling along dir for infinite
+   * lights (a sun of zero diameter: its value along its own direction, whatever dir). p, n, dir
+   * borrowed (n and p are read for area lights only and may be NULL for others); Le out (rgb). An area
+   * light without n, or an unknown light, emits zero. */
+  void (*eval_emission)(const nimbus_host_t *host, uint32_t light, const float p[3], const float n[3],
+                        const float dir[3], float Le[3]);
+  /* Since 1.2 (absent from a 1.1 host's table: check NIMBUS_HAS_MEMBER before calling).
+   * [any-thread] The densities with which sample_emission of `light` produces a photon leaving p along
+   * the unit direction dir, exactly as it reports them. pdf_pos (out): the area density of p (1 for
+   * delta positions; infinite lights: 1/(pi R^2) of their emission disk, whatever p). pdf_dir (out): the
+   * solid-angle density of dir given p (1 for delta directions; 0 where the light never emits). p, n,
+   * dir borrowed, as for eval_emission. An area light without n has pdf_dir 0; an unknown light, both 0. */
+  void (*pdf_emission)(const nimbus_host_t *host, uint32_t light, const float p[3], const float n[3],
+                       const float dir[3], float *pdf_pos, float *pdf_dir);
 } nimbus_host_lights_v1_t;
 
 #ifdef __cplusplus

@@ -2,6 +2,7 @@
 #ifndef NIMBUS_NIMBUS_H
 #define NIMBUS_NIMBUS_H
 
+#include "base.h"
 #include "bsdf.h"
 #include "film.h"
 #include "guiding.h"
@@ -12,6 +13,7 @@
 #include "plugin.h"
 #include "rng.h"
 #include "scene.h"
+#include "status.h"
 #include "version.h"
 
 #endif /* NIMBUS_NIMBUS_H */

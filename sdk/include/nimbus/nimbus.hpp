@@ -22,7 +22,6 @@
 #include <string>
 #include <vector>
 
-#include "cpp/per_worker.hpp"
 #include "nimbus.h"
 
 namespace nimbus {
@@ -44,6 +43,46 @@ class Host {
 
  private:
   const nimbus_host_t *h_;
+};
+
+// Bytes of a cache line on the x86-64 and AArch64 machines Nimbus runs on: data two workers write must
+// not share one.
+inline constexpr size_t kCacheLineBytes = 64;
+
+// Per-worker state, sized in begin_render (never thread_local). Each worker's item starts a cache line of
+// its own: items written on every sample by different workers must not share a line, or the workers
+// stall on each other's writes (false sharing).
+template <class T>
+class PerWorker {
+  struct alignas(kCacheLineBytes) Slot {
+    T item{};
+  };
+
+ public:
+  class iterator {
+   public:
+    explicit iterator(typename std::vector<Slot>::iterator it) : it_(it) {}
+    T &operator*() const { return it_->item; }
+    iterator &operator++() {
+      ++it_;
+      return *this;
+    }
+    bool operator==(const iterator &o) const { return it_ == o.it_; }
+    bool operator!=(const iterator &o) const { return it_ != o.it_; }
+
+   private:
+    typename std::vector<Slot>::iterator it_;
+  };
+
+  void resize(uint32_t workers) { items_.assign(workers, Slot{}); }
+  T &operator[](const nimbus_thread_ctx_t &ctx) { return items_[ctx.worker_index].item; }
+  T &operator[](uint32_t i) { return items_[i].item; }
+  size_t size() const { return items_.size(); }
+  iterator begin() { return iterator(items_.begin()); }
+  iterator end() { return iterator(items_.end()); }
+
+ private:
+  std::vector<Slot> items_;
 };
 
 // Common base of plugin instances: owns the C nimbus_plugin_t that the host sees.
@@ -248,6 +287,15 @@ class Guide : public Plugin {
   }
 };
 
+// The value the host resolved for option `name` of a render (declared options always arrive, SDK 1.2),
+// or nullptr when the setup carries no such option.
+inline const char *option_value(const nimbus_render_setup_t &setup, const char *name) {
+  for (uint32_t i = 0; i < setup.option_count; ++i)
+    if (setup.options[i].key && setup.options[i].value && std::strcmp(setup.options[i].key, name) == 0)
+      return setup.options[i].value;
+  return nullptr;
+}
+
 namespace detail {
 
 template <class... Plugins>
@@ -318,6 +366,28 @@ struct Library {
                                           FEATURES,                                                         \
                                           REQUIRED};                                                        \
     return d;                                                                                               \
+  }
+
+// A static descriptor with declared options (SDK 1.2): OPTIONS names a `const nimbus_option_decl_t[]`
+// array of static storage, chained to the descriptor as a nimbus_option_list_t.
+#define NIMBUS_DESCRIPTOR_WITH_OPTIONS(ID, NAME, VENDOR, KIND, MAJOR, MINOR, PATCH, FEATURES, REQUIRED,   \
+                                       OPTIONS)                                                           \
+  static const nimbus_descriptor_t &descriptor() {                                                        \
+    static const nimbus_option_list_t list = {                                                            \
+        {sizeof(nimbus_option_list_t), NIMBUS_S_TYPE_OPTION_LIST, nullptr},                               \
+        uint32_t(sizeof(OPTIONS) / sizeof(OPTIONS[0])),                                                   \
+        0,                                                                                                \
+        OPTIONS};                                                                                         \
+    static const nimbus_descriptor_t d = {{sizeof(nimbus_descriptor_t), NIMBUS_S_TYPE_DESCRIPTOR, &list}, \
+                                          ID,                                                             \
+                                          NAME,                                                           \
+                                          VENDOR,                                                         \
+                                          {MAJOR, MINOR, PATCH, 0},                                       \
+                                          KIND,                                                           \
+                                          0,                                                              \
+                                          FEATURES,                                                       \
+                                          REQUIRED};                                                      \
+    return d;                                                                                             \
   }
 
 #endif /* NIMBUS_NIMBUS_HPP */

@@ -31,6 +31,36 @@ typedef struct nimbus_descriptor {
   const char *const *required_services; /* plugin-owned: NULL-terminated "id@rev", may be NULL */
 } nimbus_descriptor_t;
 
+/* Since 1.2: the options a plugin declares, chained to its descriptor through header.next (a struct of
+ * s_type NIMBUS_S_TYPE_OPTION_LIST). The host validates the scene's option keys and the command line's
+ * flags against them (unknown keys and bad values are errors naming file:line:column), fills in the
+ * defaults, and passes every declared option to the plugin as a resolved {name, value} pair
+ * (nimbus_render_setup_t.options). It never knows a plugin's option by name. */
+typedef uint32_t nimbus_option_type_t;
+#define NIMBUS_OPTION_SWITCH 1u /* "on" or "off" (the host also reads true/false, yes/no, 1/0) */
+#define NIMBUS_OPTION_CHOICE 2u /* one of `allowed` */
+#define NIMBUS_OPTION_INT 3u    /* a decimal integer (int64) */
+#define NIMBUS_OPTION_FLOAT 4u  /* a finite decimal number */
+#define NIMBUS_OPTION_STRING 5u /* any text */
+
+/* One declared option. Everything it points to is plugin-owned until the library's deinit. */
+typedef struct nimbus_option_decl {
+  const char *name; /* plugin-owned: [a-z][a-z0-9_]*, unique in the plugin; scene key and --name flag */
+  nimbus_option_type_t type;
+  uint32_t reserved;
+  const char *default_value;  /* plugin-owned: a valid value of the type, as the host passes it */
+  const char *const *allowed; /* plugin-owned: NULL-terminated values of a CHOICE; NULL otherwise */
+  const char *doc;            /* plugin-owned: one line for `nimbus plugins --options ID` */
+} nimbus_option_decl_t;
+
+#define NIMBUS_S_TYPE_OPTION_LIST 2u
+typedef struct nimbus_option_list {
+  nimbus_struct_header_t header; /* s_type = NIMBUS_S_TYPE_OPTION_LIST; chained from a descriptor */
+  uint32_t count;
+  uint32_t reserved;
+  const nimbus_option_decl_t *options; /* plugin-owned until deinit; count entries */
+} nimbus_option_list_t;
+
 /* A live plugin instance, created by nimbus_entry_t.create. */
 typedef struct nimbus_plugin {
   uint32_t struct_size;
