@@ -15,7 +15,7 @@
 
 #include <tbb/task_arena.h>
 
-#include <nimbus/cpp/per_worker.hpp>
+#include <nimbus/nimbus.hpp>
 
 #include "film/error_estimate.hpp"
 #include "film/film.hpp"

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include <nimbus/cpp/per_worker.hpp>
+#include <nimbus/nimbus.hpp>
 
 #include "core/expected.hpp"
 
