@@ -14,7 +14,7 @@
 
 #include <nimbus/cpp/math.hpp>
 #include "abi/host_services.hpp"
-#include "render/render_context.hpp"
+#include "world/world.hpp"
 #include "scene/scene_parser.hpp"
 
 namespace nimbus::testing {
@@ -25,7 +25,7 @@ class LightsHarness {
     auto desc = parse_scene_string(yaml, "emission.yaml");
     EXPECT_TRUE(desc.ok()) << (desc.ok() ? "" : desc.error().message);
     desc_ = std::move(desc.value());
-    auto ctx = RenderContext::build(desc_, 1);
+    auto ctx = World::build(desc_, desc_.render.filter);
     EXPECT_TRUE(ctx.ok()) << (ctx.ok() ? "" : ctx.error().message);
     ctx_ = std::move(ctx.value());
     services_ = std::make_unique<HostServices>(ctx_.get());
@@ -36,7 +36,7 @@ class LightsHarness {
 
   const nimbus_host_t *host() const { return services_->host(); }
   const nimbus_host_lights_v1_t &table() const { return *lights_; }
-  const RenderContext &context() const { return *ctx_; }
+  const World &context() const { return *ctx_; }
   uint32_t count() const { return lights_->count(host()); }
 
   nimbus_light_emission_t sample(uint32_t light, const float u[4]) const {
@@ -75,7 +75,7 @@ class LightsHarness {
 
  private:
   SceneDesc desc_;
-  std::unique_ptr<RenderContext> ctx_;
+  std::unique_ptr<World> ctx_;
   std::unique_ptr<HostServices> services_;
   const nimbus_host_lights_v1_t *lights_ = nullptr;
 };
