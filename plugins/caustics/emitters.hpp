@@ -192,12 +192,21 @@ class EmitterSet {
     if (!(sel > 0)) return 0;
     const Emitter &e = emitters_[l];
     if (e.kind == EmitterKind::Environment || (e.infinite() && !on_target(l, p, w))) return 0;
-    float za[3], na[3], wa[3], pdf_pos = 0, pdf_dir = 0;
-    z.store(za), n.store(na), w.store(wa);
-    lights_->pdf_emission(host_, l, za, na, wa, &pdf_pos, &pdf_dir);
+    const EmissionCone c = e.infinite() ? EmissionCone() : cone(l, z);
+    // The host's densities only where the solver's do not replace them (its cones, the sun's disk or
+    // rectangle) and are not 1 by the SDK's convention for delta positions and directions: this runs at
+    // every emitter hit and NEE sample of a camera path.
+    float pdf_pos = 1, pdf_dir = 1;
+    const bool host_pos = !e.infinite() && !e.delta_position();
+    const bool host_dir = !(e.infinite() && e.delta_direction()) && !c.active();
+    if (host_pos || host_dir) {
+      float za[3], na[3], wa[3];
+      z.store(za), n.store(na), w.store(wa);
+      lights_->pdf_emission(host_, l, za, na, wa, &pdf_pos, &pdf_dir);
+    }
     if (e.infinite())
       pdf_pos = e.pdf_pos;  // the solver's disk or rectangle
-    else if (const EmissionCone c = cone(l, z); c.active())
+    else if (c.active())
       pdf_dir = c.contains(w) ? c.pdf() : 0.0f;
     return sel * pdf_pos * pdf_dir;
   }
