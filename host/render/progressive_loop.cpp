@@ -58,7 +58,8 @@ LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &p, Ru
     const uint64_t done = out.done;
     if (stop.iterations && done >= stop.iterations) break;
     if (stop.time_seconds > 0 && done > out.resumed_from) {
-      // Stop when another iteration would overrun the budget (estimated from this session's mean).
+      // Stop when another iteration would overrun the budget (estimated from this run's mean since it started
+      // or resumed).
       const double elapsed = seconds_since(t0);
       if (elapsed + elapsed / double(done - out.resumed_from) > stop.time_seconds) break;
     }

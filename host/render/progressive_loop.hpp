@@ -22,7 +22,7 @@ namespace nimbus {
 struct LoopOutcome {
   uint64_t resumed_from = 0;  // iterations the film held before the loop
   uint64_t done = 0;          // iterations it holds after
-  double seconds = 0;         // this session's render time
+  double seconds = 0;         // render time since this run started or resumed
   bool cancelled = false;
   bool reached_target = false;
   double estimated_error = -1;  // the last estimate with an error target

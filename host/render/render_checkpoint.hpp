@@ -27,7 +27,7 @@ class RenderCheckpoint {
   // be). Otherwise a warning through `warn` (if any) when a checkpoint is about to be replaced.
   Status restore_or_warn(Film &film, const MessageFn &warn);
 
-  // This session's iterations start at `t0`, with `done` iterations in the film.
+  // This run's iterations (since it started or resumed) start at `t0`, with `done` iterations in the film.
   void start(uint64_t done, Clock::time_point t0);
   double session_seconds() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
   // Render seconds of earlier sessions (of the checkpoint resumed; else 0).

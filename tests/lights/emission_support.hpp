@@ -14,8 +14,8 @@
 
 #include <nimbus/cpp/math.hpp>
 #include "abi/host_services.hpp"
-#include "world/world.hpp"
 #include "scene/scene_parser.hpp"
+#include "world/world.hpp"
 
 namespace nimbus::testing {
 
