@@ -62,6 +62,21 @@ float bounding_sphere(const nimbus_host_t *host, float center[3]) {
   return g.sphere_radius();
 }
 
+uint32_t sharp_bounds(const nimbus_host_t *host, float alpha_max, nimbus_object_bounds_t *out,
+                      uint32_t capacity) {
+  uint32_t count = 0;
+  for (const SharpObject &o : world_of(host).sharp_objects) {
+    if (!(o.min_alpha < alpha_max)) continue;
+    if (out && count < capacity) {
+      nimbus_object_bounds_t &b = out[count];
+      o.lo.store(b.lo), o.hi.store(b.hi), o.sphere.center.store(b.center);
+      b.radius = o.sphere.radius;
+    }
+    ++count;
+  }
+  return count;
+}
+
 float generate_ray(const nimbus_host_t *host, const nimbus_camera_sample_t *sample, nimbus_ray_t *ray) {
   world_of(host).camera.generate_ray(*sample, *ray);
   return 1.0f;
@@ -98,7 +113,8 @@ const nimbus_host_scene_query_v1_t kSceneQueryV1 = {sizeof(nimbus_host_scene_que
                                                     interaction,
                                                     spawn_ray,
                                                     spawn_ray_to,
-                                                    bounding_sphere};
+                                                    bounding_sphere,
+                                                    sharp_bounds};
 
 const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t), generate_ray, resolution, connect,
                                            sample_film};

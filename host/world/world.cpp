@@ -14,6 +14,7 @@ Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc, FilterType 
   auto textures = TexturedMaterials::build(desc.materials);
   if (!textures) return textures.error();
   world->textures = std::move(textures.value());
+  world->sharp_objects = find_sharp_objects(desc, *world->geometry, world->bsdfs);
   world->camera = Camera(desc.camera, desc.render.width, desc.render.height);
   world->filter = PixelFilter(filter);
   return world;

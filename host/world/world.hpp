@@ -14,6 +14,7 @@
 #include "scene/scene_desc.hpp"
 #include "world/camera.hpp"
 #include "world/pixel_filter.hpp"
+#include "world/sharp_objects.hpp"
 
 namespace nimbus {
 
@@ -24,6 +25,7 @@ struct World {
   std::unique_ptr<TexturedMaterials> textures;  // null unless a material reads a texture
   Camera camera;
   PixelFilter filter;
+  std::vector<SharpObject> sharp_objects;  // objects that can form caustics (sharp_objects.hpp)
 
   // Builds geometry, lights, materials and camera for `desc` (which must outlive the world), and the pixel
   // filter the render job resolved (the scene's, or the command line's instead).

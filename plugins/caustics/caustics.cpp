@@ -57,7 +57,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     scene_center_ = Vec3f::load(center);
     std::vector<Emitter> emitters;
     for (const nimbus_light_info_t &info : light_info()) emitters.push_back(make_emitter(info));
-    emitters_.build(std::move(emitters), scene_center_, scene_radius_, host().get(), services().lights);
+    // Photons aim at every object that can form a caustic, known before the first pass (spec 6.2).
+    emitters_.build(std::move(emitters), scene_center_, scene_radius_, host().get(), services().lights,
+                    query_sharp_targets(host().get(), services().scene, kSharpAlpha));
     merge_element_ =
         services().film->register_element(host().get(), "caustics_merge", 3, NIMBUS_ELEMENT_AVERAGE);
     return NIMBUS_OK;
@@ -71,18 +73,15 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     merge_id_ = services().film->is_active(h, merge_element_) ? merge_element_ : NIMBUS_ELEMENT_INVALID;
     region_pixels_.resize(info.worker_count);
     lookup_radii_.resize(info.worker_count);
-    saw_sharp_.resize(info.worker_count);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
-    armed_ = enabled_ && emitters_.emits_photons();
+    // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
+    armed_ = enabled_ && emitters_.emits_photons() && !emitters_.targets().empty();
     ScheduleConfig cfg;
     cfg.camera_paths = std::max<uint64_t>(1, uint64_t(width_) * height_);
     schedule_ = PhotonSchedule(cfg);
     useful_.reset(armed_ ? size_t(width_) * height_ : 0);
     pass_.release();
     map_active_ = false;
-    photons_saw_sharp_ = false;
-    next_target_ = {};
-    emitters_.set_target(scene_center_, scene_radius_);
     stats_ = {};
     return NIMBUS_OK;
   }
@@ -94,7 +93,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       if (nimbus_status_t s = photon_pass(paths); s != NIMBUS_OK) return s;
       stats_.photon_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       schedule_.pass_done(iteration, merge_.map_paths, pass_.map().size());
-      if (schedule_.passes() == 1 && !photons_saw_sharp_ && !camera_saw_sharp()) schedule_.set_dormant(true);
     }
     map_active_ = schedule_.map_active();
     merge_.radius_per_length = radius_per_length(theta_pix_, schedule_.passes());
@@ -108,7 +106,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       MergingPath path(merge_, lookup_radii_[ctx]);
       trace(ctx, x, y, rng, rec, path);
     } else {
-      WatchingPath path(services().bsdf, host().get(), saw_sharp_[ctx]);
+      sdk::PlainPath path;
       trace(ctx, x, y, rng, rec, path);
     }
   }
@@ -130,7 +128,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     uint64_t pixels = 0;
     for (uint64_t &p : region_pixels_) pixels += p, p = 0;
     schedule_.set_camera_paths(pixels);
-    if (schedule_.dormant() && camera_saw_sharp()) schedule_.set_dormant(false);
     if (map_active_) {
       schedule_.iteration_done(iteration, useful_.ratios(pixels));
       ++stats_.map_iterations;
@@ -154,27 +151,14 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   }
 
  private:
-  bool camera_saw_sharp() {
-    for (const uint8_t s : saw_sharp_)
-      if (s) return true;
-    return false;
-  }
-
   nimbus_status_t photon_pass(uint64_t paths) {
     const nimbus_host_t *h = host().get();
     const uint32_t pass = schedule_.passes() + 1;
-    if (next_target_.valid())
-      emitters_.set_target(next_target_.sphere.center, next_target_.sphere.radius, next_target_.lo,
-                           next_target_.hi),
-          next_target_ = {};
     if (progress_) progress_->report(h, 0, paths, "photons");
     const PhotonTracer tracer(h, services(), light_sampler(), light_sampler_iface(), emitters_, max_depth());
     PhotonPass::Result result;
-    if (nimbus_status_t s = pass_.run(tracer, tasks_, h, pass, paths, scene_radius_, lookup_radii_, result);
-        s != NIMBUS_OK)
+    if (nimbus_status_t s = pass_.run(tracer, tasks_, h, pass, paths, lookup_radii_, result); s != NIMBUS_OK)
       return s;
-    if (result.target.valid()) next_target_ = result.target;
-    photons_saw_sharp_ = photons_saw_sharp_ || result.saw_sharp;
     if (progress_) progress_->report(h, paths, paths, "photons");
     merge_ = {h,
               services().bsdf,
@@ -196,22 +180,19 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   const nimbus_host_tasks_v1_t *tasks_ = nullptr;
   const nimbus_host_progress_v1_t *progress_ = nullptr;
   nimbus_element_t merge_element_ = NIMBUS_ELEMENT_INVALID, merge_id_ = NIMBUS_ELEMENT_INVALID;
-  sdk::PerWorker<uint8_t> saw_sharp_;             // a camera path met a sharp vertex (per worker)
   sdk::PerWorker<RadiusHistogram> lookup_radii_;  // radii of the lookups since the last photon pass
   sdk::PerWorker<uint64_t> region_pixels_;        // pixels rendered this iteration (per worker)
 
   bool enabled_ = true;  // the `caustics` switch
-  bool armed_ = false;   // enabled and some light emits photons
+  bool armed_ = false;   // enabled, and some light emits photons towards sharp geometry
   EmitterSet emitters_;
   float scene_radius_ = 1, theta_pix_ = 0;
   Vec3f scene_center_;
-  EmissionTarget next_target_;  // the emission target from the next photon pass on
   uint32_t width_ = 0, height_ = 0;
   PhotonSchedule schedule_;
   PhotonPass pass_;
   MergeContext merge_;  // what camera passes read while the map is active
   bool map_active_ = false;
-  bool photons_saw_sharp_ = false;
   UsefulPixels useful_;
   struct Stats {
     uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;

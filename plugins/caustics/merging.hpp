@@ -96,22 +96,4 @@ class MergingPath {
   bool lookup_ = false;  // the current vertex looks photons up
 };
 
-// The plain path (nimbus.pt's estimator) of camera passes without a photon map, noting whether it met a
-// sharp vertex: that wakes a dormant solver (zero-cost rule, spec 9).
-class WatchingPath : public sdk::PlainPath {
- public:
-  WatchingPath(const nimbus_host_bsdf_v1_t *bsdf, const nimbus_host_t *h, uint8_t &saw_sharp)
-      : bsdf_(bsdf), h_(h), saw_sharp_(saw_sharp) {}
-  void vertex(const sdk::PathVertex &v, CausticsRecord &) {
-    if (!saw_sharp_ && has(v.lobes, NIMBUS_LOBE_SPECULAR | NIMBUS_LOBE_GLOSSY) &&
-        is_sharp(bsdf_, h_, *v.ix, v.lobes))
-      saw_sharp_ = 1;
-  }
-
- private:
-  const nimbus_host_bsdf_v1_t *bsdf_;
-  const nimbus_host_t *h_;
-  uint8_t &saw_sharp_;
-};
-
 }  // namespace nimbus::caustics

@@ -24,7 +24,7 @@ constexpr double kFilterShare = 0.95;
 }  // namespace
 
 nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks,
-                                const nimbus_host_t *h, uint32_t pass, uint64_t paths, float scene_radius,
+                                const nimbus_host_t *h, uint32_t pass, uint64_t paths,
                                 sdk::PerWorker<RadiusHistogram> &lookup_radii, Result &result) {
   const uint64_t task_count = (paths + kPhotonPathsPerTask - 1) / kPhotonPathsPerTask;
   chunks_.resize(task_count);
@@ -50,16 +50,8 @@ nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_ta
   // Concatenate in task order: photon indices never depend on threads.
   size_t total = 0;
   uint64_t done = 0;
-  bool sharp = false;
-  Vec3f sharp_lo(kInfinity), sharp_hi(-kInfinity);
-  for (const PhotonChunk &c : chunks_) {
-    total += c.photons.size(), done += c.paths, sharp |= c.saw_sharp;
-    sharp_lo = min(sharp_lo, c.sharp_lo), sharp_hi = max(sharp_hi, c.sharp_hi);
-  }
-  // The probe's own map keeps the scene's target (camera-side MIS must use the densities its photons
-  // came from), so the new target takes effect with the next pass.
+  for (const PhotonChunk &c : chunks_) total += c.photons.size(), done += c.paths;
   result = {};
-  if (pass == 1 && sharp) result.target = target_from_probe(chunks_, sharp_lo, sharp_hi, scene_radius);
   const sdk::ParallelFor parallel = sdk::host_parallel_for(tasks, h);
   // The chunks in task order, copied concurrently.
   photons_.resize(total);
@@ -69,7 +61,6 @@ nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_ta
     std::copy(chunks_[i].photons.begin(), chunks_[i].photons.end(), photons_.begin() + ptrdiff_t(offset[i]));
   });
   result.paths = done;
-  result.saw_sharp = sharp;
   // The filter's reach: the radius 95 % of the lookups since the last pass stayed within (radii only
   // shrink from pass to pass), so nearly every lookup can ask it first.
   RadiusHistogram radii;

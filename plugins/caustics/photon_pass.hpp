@@ -10,7 +10,6 @@
 
 #include <nimbus/nimbus.hpp>
 
-#include "emission_target.hpp"
 #include "emitters.hpp"
 #include "occupancy_filter.hpp"
 #include "photon_map.hpp"
@@ -21,16 +20,13 @@ namespace nimbus::caustics {
 class PhotonPass {
  public:
   struct Result {
-    uint64_t paths = 0;      // photon paths completed (N_eff of the new map)
-    bool saw_sharp = false;  // some photon path met a sharp vertex
-    EmissionTarget target;   // after the probe (pass 1) only: where later passes aim
+    uint64_t paths = 0;  // photon paths completed (N_eff of the new map)
   };
 
   // [main-thread] Traces `paths` photon paths of pass `pass` (1-based) and rebuilds the map. The lookup
   // radii since the last pass (emptied here) set the reach of the map's occupancy filter.
   nimbus_status_t run(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h,
-                      uint32_t pass, uint64_t paths, float scene_radius,
-                      sdk::PerWorker<RadiusHistogram> &lookup_radii, Result &result);
+                      uint32_t pass, uint64_t paths, sdk::PerWorker<RadiusHistogram> &lookup_radii, Result &result);
 
   const PhotonKdTree &map() const { return map_; }
   // [main-thread] Frees the map and the buffers (end of a render).

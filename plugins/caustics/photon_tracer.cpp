@@ -53,17 +53,24 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
   const bool infinite = es.flags & NIMBUS_LIGHT_INFINITE;
   const Vec3f n_e = Vec3f::load(es.n);
   Vec3f dir0 = Vec3f::load(es.dir);
-  float pdf_dir = es.pdf_dir;
   Rgb Le = Rgb::load(es.Le);
-  // Infinite lights: the solver's own emission disk (emitters.hpp), same numbers as the host's.
-  const Vec3f org = infinite ? emitters_.emission_origin(light, dir0, ue[0], ue[1]) : Vec3f::load(es.org);
-  // Finite lights: the host's emission point, then a direction in the cone towards the target.
-  if (const EmissionCone cone = infinite ? EmissionCone() : emitters_.cone(light, org); cone.active()) {
-    dir0 = cone.sample(ue[2], ue[3]);
-    pdf_dir = cone.pdf();
-    Le = emitted(light, es, dir0);
+  // The projection map (emitters.hpp) picks where the photon goes: a cone towards sharp geometry or the
+  // light's own emission (finite lights), the targets' disk or the scene's (the sun).
+  const float u_mix = next_uniform(rng);
+  Vec3f org = Vec3f::load(es.org);
+  float pdf_pos = es.pdf_pos, pdf_dir = es.pdf_dir;
+  if (infinite) {
+    org = emitters_.emission_origin(light, dir0, u_mix, ue[0], ue[1]);
+    pdf_pos = emitters_.sun_pdf_pos(light, org, dir0);
+  } else {
+    dir0 = emitters_.sample_direction(light, org, u_mix, ue[2], ue[3], dir0);
+    // The host's own density at the direction, as the camera side asks for it.
+    float host_pos = 0, own_pdf = 0, wa[3];
+    dir0.store(wa);
+    svc_.lights->pdf_emission(h, light, es.org, es.n, wa, &host_pos, &own_pdf);
+    pdf_dir = emitters_.pdf_dir(light, org, dir0, own_pdf);
+    if (dir0 != Vec3f::load(es.dir)) Le = emitted(light, es, dir0);
   }
-  const float pdf_pos = infinite ? em.pdf_pos : es.pdf_pos;
   const float cos_e = delta_pos || infinite ? 1.0f : std::abs(dot(n_e, dir0));
   const float lp = sel * pdf_pos * pdf_dir;
   Rgb beta = Le * (cos_e / lp);
@@ -97,18 +104,6 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
     // the emission target; tracing them on would cost a large share of the photon vertices.
     if (rough && depth == 1) return;
     const bool smooth_only = !has(lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
-    if (!rough) {
-      out.saw_sharp = true;
-      out.sharp_lo = min(out.sharp_lo, Vec3f::load(ix.p));
-      out.sharp_hi = max(out.sharp_hi, Vec3f::load(ix.p));
-      if (pass == 1 && !out.sharp_points_full) {
-        if (out.sharp_points.size() < kSharpPointsPerTask)
-          out.sharp_points.push_back(Vec3f::load(ix.p));
-        else
-          out.sharp_points_full = true;
-      }
-    }
-
     float nee_term = 0;
     if (depth == 1 && !smooth_only) nee_term = first_vertex_nee(ix, light, em, es, wo, lp, c_in);
 

@@ -1,6 +1,6 @@
-// Photon paths (solver spec section 4): emission by the solver's light selection towards the emission
-// target, storage at rough vertices after a sharp one, termination after two consecutive rough vertices,
-// and the photon-side MIS state of every stored photon.
+// Photon paths (solver spec section 4): emission by the solver's light selection and projection maps,
+// storage at rough vertices after a sharp one, termination after two consecutive rough vertices, and the
+// photon-side MIS state of every stored photon.
 #pragma once
 
 #include <nimbus/nimbus.hpp>
@@ -21,20 +21,9 @@ namespace nimbus::caustics {
 struct alignas(sdk::kCacheLineBytes) PhotonChunk {
   std::vector<Photon> photons;
   uint64_t paths = 0;  // completed paths
-  bool saw_sharp = false;
-  Vec3f sharp_lo{kInfinity}, sharp_hi{-kInfinity};  // bounds of the sharp vertices met
-  std::vector<Vec3f> sharp_points;                  // the probe's sharp vertices (up to a cap)
-  bool sharp_points_full = false;
   // Empty for the next pass, keeping the buffers' memory.
-  void reset() {
-    photons.clear(), sharp_points.clear();
-    paths = 0, saw_sharp = false, sharp_points_full = false;
-    sharp_lo = Vec3f(kInfinity), sharp_hi = Vec3f(-kInfinity);
-  }
+  void reset() { photons.clear(), paths = 0; }
 };
-
-// Sharp vertices a probe task keeps for the emission target (beyond it: the box's sphere).
-inline constexpr size_t kSharpPointsPerTask = 16384;
 
 // Random-number stream of photon path p of photon pass j: derive(p, j, kStreamPhoton).
 inline constexpr uint64_t kStreamPhoton = 0x70686f746f6e;  // "photon"

@@ -88,7 +88,7 @@ class PhotonSchedule {
 
   // Photon paths to trace before the camera pass of `iteration` (0: none, keep the current map).
   uint64_t plan(uint64_t iteration) const {
-    if (dormant_ || iteration < next_pass_) return 0;
+    if (iteration < next_pass_) return 0;
     if (passes_ == 0) return cfg_.probe;
     const uint64_t lo = cfg_.effective_min(), hi = cfg_.effective_max();
     if (idle_ > 0) return lo;
@@ -130,11 +130,6 @@ class PhotonSchedule {
     back_off(iteration + 1);
   }
 
-  // No photon path can ever be stored (no sharp surface met by photons or camera paths): stop planning
-  // until the camera reports one.
-  void set_dormant(bool d) { dormant_ = d; }
-  bool dormant() const { return dormant_; }
-
   // Camera paths per iteration (the render region's pixels), learnt after the first camera pass.
   void set_camera_paths(uint64_t n) { cfg_.camera_paths = std::max<uint64_t>(1, n); }
 
@@ -157,7 +152,7 @@ class PhotonSchedule {
   uint32_t passes_ = 0, idle_ = 0;
   double u_ = 0;
   double yield_ = 0;  // photons stored per photon path in the last pass that stored any
-  bool active_ = false, dormant_ = false;
+  bool active_ = false;
 };
 
 }  // namespace nimbus::caustics

@@ -1,8 +1,8 @@
-// The solver's emission target (emitters.hpp): photon directions of finite lights aimed at the bounding
-// sphere of the sharp surfaces. Checked: the cone sampler against its pdf (chi-square), that the cone
-// just covers the target, that it stays exact for a small target far away (narrow cones), and that
-// the camera side's lp equals the photon side's density for the directions photons are sent along, and
-// that the sun's emission rectangle covers its box from every direction in the sun's cone.
+// The solver's projection maps (emitters.hpp, sharp_targets.hpp): photons of finite lights aimed at
+// spheres around the sharp objects. Checked: the cone sampler against its pdf (chi-square), that the cone
+// just covers the target, that it stays exact for a small target far away (narrow cones), the mixture of
+// a light's own emission and its cones against the density the camera side evaluates, that the sun's
+// emission rectangle covers its box from every direction in the sun's cone, and the clustering.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -146,51 +146,101 @@ TEST(CausticsEmitters, NarrowConeStaysExact) {
   EXPECT_GE(hits, 9900);
 }
 
-// The camera side evaluates lp from the light, the emission point and the direction; it must equal the
-// density the photon tracer used: P_sel * P_dir(cone) for directions it sends photons along, and 0
-// outside the cone (those paths belong to path tracing).
-TEST(CausticsEmitters, CameraSideDensityEqualsPhotonSide) {
+// Two targets: a ball in front of the lights and a smaller one off to the side.
+SharpTargets two_targets() {
+  std::vector<Target> objects = {{{Vec3f(0, 0, 0.5f), 0.5f}, Vec3f(-0.5f, -0.5f, 0), Vec3f(0.5f, 0.5f, 1)},
+                                 {{Vec3f(3, 1, 0.2f), 0.2f}, Vec3f(2.8f, 0.8f, 0), Vec3f(3.2f, 1.2f, 0.4f)}};
+  SharpTargets t;
+  cluster(objects, kMaxTargets, t.clusters);
+  t.all = enclose(t.clusters);
+  return t;
+}
+
+std::vector<Emitter> three_lights() {
   std::vector<Emitter> lights(3);
   lights[0].kind = EmitterKind::Point, lights[0].power = 2, lights[0].position = Vec3f(-2, 0, 2);
   lights[0].flags = NIMBUS_LIGHT_DELTA_POSITION;
   lights[1].kind = EmitterKind::Spot, lights[1].power = 1, lights[1].position = Vec3f(2, 0, 2);
   lights[1].flags = NIMBUS_LIGHT_DELTA_POSITION;
   lights[1].axis = normalize(Vec3f(-1, 0, -1)), lights[1].cos_theta_e = std::cos(0.5f);
-  lights[2].kind = EmitterKind::Area, lights[2].power = 1;
+  lights[2].kind = EmitterKind::Area, lights[2].power = 1, lights[2].position = Vec3f(0.1f, 0.05f, 3);
   lights[2].flags = NIMBUS_LIGHT_AREA;
-  EmitterSet set;
-  set.build(lights, Vec3f(0, 0, 0), 10, nullptr, &kStubLights);
-  // Before the probe the target is the scene's sphere: lights inside it emit as the host does.
-  EXPECT_FLOAT_EQ(set.lp(0, Vec3f(-2, 0, 2), Vec3f(), Vec3f(0, 0, 1), Vec3f()), 0.5f * kUniformSpherePdf);
-  EXPECT_FALSE(set.cone(2, Vec3f(0, 0, 3)).active());
+  return lights;
+}
 
-  const Vec3f target(0, 0, 0.5f);
-  set.set_target(target, 0.5f);
-  Pcg32 rng(9);
+// A direction of light l's own emission (the stub host's distributions of pdf_dir_of).
+Vec3f own_direction(uint32_t l, const Emitter &e, const Vec3f &n, Pcg32 &rng) {
+  const float u0 = uniform(rng), u1 = uniform(rng);
+  if (l == 0) return sample_uniform_sphere(u0, u1);
+  if (l == 1) return Frame::from_normal(e.axis).to_world(sample_uniform_cone(u0, u1, e.cos_theta_e));
+  return Frame::from_normal(n).to_world(sample_cosine_hemisphere(u0, u1));
+}
+
+// Every finite light's projection map: the mixture sampler (own emission or a cone towards each target)
+// against the mixture density the camera side evaluates, by chi-square over the sphere of directions;
+// the spot drops the side target outside its cone; the own share is at least the defensive 10 %.
+TEST(CausticsEmitters, ProjectionMapSamplerMatchesItsDensity) {
+  EmitterSet set;
+  set.build(three_lights(), Vec3f(0, 0, 0), 10, nullptr, &kStubLights, two_targets());
+  ASSERT_EQ(set.targets().clusters.size(), 2u);
+  EXPECT_EQ(set[0].aims.size(), 2u);
+  EXPECT_EQ(set[1].aims.size(), 1u) << "the side target lies outside the spot's cone";
+  EXPECT_EQ(set[2].aims.size(), 2u);
+  const Vec3f n(0, 0, -1);
   for (uint32_t l = 0; l < 3; ++l) {
-    const Vec3f z = l == 2 ? Vec3f(0.1f, 0.05f, 3) : set[l].position;
-    const Vec3f n(0, 0, -1);
-    const EmissionCone cone = set.cone(l, z);
-    ASSERT_TRUE(cone.active()) << "light " << l;
-    const float photon_lp = set.selection_pmf(l) * (l == 2 ? 4.0f : 1.0f) * cone.pdf();
-    for (int i = 0; i < 1000; ++i) {
-      const Vec3f w = cone.sample(uniform(rng), uniform(rng));
-      EXPECT_FLOAT_EQ(set.lp(l, z, n, w, z + w), photon_lp) << "light " << l;
-    }
-    // Away from the target: no photon is sent that way.
-    EXPECT_EQ(set.lp(l, z, n, normalize(Vec3f(0.3f, 1, 0.2f)), z), 0.0f) << "light " << l;
+    const Emitter &e = set[l];
+    float shares = e.own;
+    for (const Aim &a : e.aims) shares += a.share;
+    EXPECT_NEAR(shares, 1.0f, 1e-5f) << "light " << l;
+    EXPECT_GE(e.own, kOwnShare - 1e-6f);
+    const Vec3f z = e.position;
+    ChiSquareConfig cfg;
+    cfg.seed = 40 + l;
+    const auto result = test::chi_square_test(
+        [&](Pcg32 &rng) -> std::optional<Vec3f> {
+          const Vec3f own = own_direction(l, e, n, rng);
+          const float um = uniform(rng), u0 = uniform(rng), u1 = uniform(rng);
+          return set.sample_direction(l, z, um, u0, u1, own);
+        },
+        [&](const Vec3f &w) { return double(set.pdf_dir(l, z, w, pdf_dir_of(l, n, w))); }, cfg);
+    EXPECT_TRUE(result.error.empty()) << "light " << l << ": " << result.error;
+    EXPECT_GT(result.p_value, 0.01) << "light " << l << ": " << result.describe();
+    EXPECT_NEAR(result.pdf_integral, 1.0, 5e-3) << "light " << l << ": " << result.describe();
+    // The camera side's lp is the selection, the host's position density and this mixture.
+    const Vec3f w = normalize(Vec3f(0, 0, 0.5f) - z);
+    EXPECT_FLOAT_EQ(set.lp(l, z, n, w, z + w),
+                    set.selection_pmf(l) * (l == 2 ? 4.0f : 1.0f) * set.pdf_dir(l, z, w, pdf_dir_of(l, n, w)));
   }
-  // The spot keeps its own (here wider) cone only where the target's is wider than it.
-  set.set_target(Vec3f(0, 0, 0), 50);
-  EXPECT_FALSE(set[1].cone.active());
-  EXPECT_FLOAT_EQ(set.lp(1, set[1].position, Vec3f(), set[1].axis, Vec3f()),
-                  set.selection_pmf(1) * uniform_cone_pdf(set[1].cos_theta_e));
+}
+
+// A small ball far from a point light: the light's own (uniform) emission would send ~1e-5 of its
+// photons at it; the projection map sends 90 %, and the density there is the cone's.
+TEST(CausticsEmitters, SmallFarTargetGetsMostPhotons) {
+  std::vector<Target> objects = {{{Vec3f(30, 0, 0.05f), 0.05f}, Vec3f(29.95f, -0.05f, 0), Vec3f(30.05f, 0.05f, 0.1f)}};
+  SharpTargets t;
+  cluster(objects, kMaxTargets, t.clusters);
+  t.all = enclose(t.clusters);
+  std::vector<Emitter> lights = three_lights();
+  lights.resize(1);
+  EmitterSet set;
+  set.build(lights, Vec3f(0, 0, 0), 50, nullptr, &kStubLights, t);
+  ASSERT_EQ(set[0].aims.size(), 1u);
+  EXPECT_NEAR(set[0].own, kOwnShare, 1e-6f);
+  Pcg32 rng(5);
+  int hits = 0;
+  for (int i = 0; i < 10000; ++i) {
+    const Vec3f w = set.sample_direction(0, set[0].position, uniform(rng), uniform(rng), uniform(rng),
+                                         own_direction(0, set[0], Vec3f(), rng));
+    const Vec3f d = Vec3f(30, 0, 0.05f) - set[0].position;
+    hits += dot(d, w) > 0 && length(d - w * dot(d, w)) <= 0.05f ? 1 : 0;
+  }
+  EXPECT_NEAR(hits / 1e4, 1 - kOwnShare, 0.015);  // 5 sigma of a binomial of 1e4 at 0.9
 }
 
 // The sun's emission rectangle (a pool's water: a flat 4 x 2 m box under an oblique sun): smaller than
 // the disk around the target's sphere; every box point is reachable from every direction in the sun's
-// cone; the camera side's lp along a photon's line equals the photon side's density, and is 0 for a
-// line that misses the rectangle.
+// cone; the camera side's lp along a photon's line equals the photon side's density (the rectangle's
+// share plus the scene disk's), and is the scene disk's alone for a line that misses the rectangle.
 TEST(CausticsEmitters, SunRectangleCoversTheBox) {
   for (const bool delta : {false, true}) {
     std::vector<Emitter> lights(1);
@@ -199,15 +249,15 @@ TEST(CausticsEmitters, SunRectangleCoversTheBox) {
     sun.flags = NIMBUS_LIGHT_INFINITE | (delta ? NIMBUS_LIGHT_DELTA_DIRECTION : 0u);
     sun.cos_theta_e = delta ? 1.0f : std::cos(0.5f * 0.53f * kPi / 180);
     g_sun_cos_half = sun.cos_theta_e;
-    EmitterSet set;
-    set.build(lights, Vec3f(0, 0, 0), 20, nullptr, &kStubSun);
     const Vec3f lo(-2, -1, -0.08f), hi(2, 1, 0.08f), center(0.1f, 0, 0);
     const float radius = 1.05f * length(hi - center);
-    set.set_target(center, radius);  // no box: the disk
-    EXPECT_FALSE(set[0].use_rect);
-    EXPECT_FLOAT_EQ(set[0].pdf_pos, 1 / (kPi * radius * radius));
-    set.set_target(center, radius, lo, hi);
+    SharpTargets t;
+    t.clusters = {{{center, radius}, lo, hi}};
+    t.all = t.clusters[0];
+    EmitterSet set;
+    set.build(lights, Vec3f(0, 0, 0), 20, nullptr, &kStubSun, t);
     ASSERT_TRUE(set[0].use_rect);
+    EXPECT_NEAR(set[0].own, kOwnShare, 1e-6f);
     const float area = 1 / set[0].pdf_pos;
     const float projected = 8 * std::abs(sun.axis.z);  // the box's top face seen along the axis
     EXPECT_LT(area, 0.55f * kPi * radius * radius) << "delta " << delta;
@@ -216,19 +266,44 @@ TEST(CausticsEmitters, SunRectangleCoversTheBox) {
 
     Pcg32 rng(17 + delta);
     const float pdf_dir = delta ? 1.0f : uniform_cone_pdf(sun.cos_theta_e);
+    const float scene_disk = kOwnShare / (kPi * 20 * 20);
     for (int i = 0; i < 20000; ++i) {
       const Vec3f w = delta ? sun.axis
                             : Frame::from_normal(sun.axis).to_world(
                                   sample_uniform_cone(uniform(rng), uniform(rng), sun.cos_theta_e));
       const Vec3f x(lo.x + uniform(rng) * (hi.x - lo.x), lo.y + uniform(rng) * (hi.y - lo.y),
                     lo.z + uniform(rng) * (hi.z - lo.z));
-      ASSERT_TRUE(set.on_target(0, x, w)) << "box point not covered, delta " << delta;
-      const Vec3f o = set.emission_origin(0, w, uniform(rng), uniform(rng));
+      const float on = scene_disk + (1 - kOwnShare) * set[0].pdf_pos;
+      ASSERT_FLOAT_EQ(set.sun_pdf_pos(0, x, w), on) << "box point not covered, delta " << delta;
+      const float um = uniform(rng);
+      const Vec3f o = set.emission_origin(0, w, um, uniform(rng), uniform(rng));
       const Vec3f p = o + w * (20 + 5 * uniform(rng));
-      EXPECT_FLOAT_EQ(set.lp(0, Vec3f(), Vec3f(), w, p), set.selection_pmf(0) * set[0].pdf_pos * pdf_dir);
+      EXPECT_FLOAT_EQ(set.lp(0, Vec3f(), Vec3f(), w, p), set.selection_pmf(0) * set.sun_pdf_pos(0, o, w) * pdf_dir);
+      if (um >= kOwnShare) EXPECT_FLOAT_EQ(set.sun_pdf_pos(0, o, w), on);
     }
-    // A line well outside the rectangle: no photon travels along it.
-    EXPECT_EQ(set.lp(0, Vec3f(), Vec3f(), sun.axis, Vec3f(0, 6, 0)), 0.0f);
+    // A line well outside the rectangle: only the scene disk's photons travel along it.
+    EXPECT_FLOAT_EQ(set.lp(0, Vec3f(), Vec3f(), sun.axis, Vec3f(0, 6, 0)), scene_disk * pdf_dir);
+  }
+}
+
+// The host's sharp objects become at most kMaxTargets clusters that enclose every object.
+TEST(CausticsEmitters, ClustersEncloseEveryObject) {
+  Pcg32 rng(23);
+  std::vector<Target> objects;
+  for (int i = 0; i < 100; ++i) {
+    const Vec3f c(20 * uniform(rng), 20 * uniform(rng), uniform(rng));
+    const float r = 0.05f + 0.3f * uniform(rng);
+    objects.push_back({{c, r}, c - Vec3f(r), c + Vec3f(r)});
+  }
+  const std::vector<Target> copy = objects;
+  std::vector<Target> clusters;
+  cluster(objects, kMaxTargets, clusters);
+  EXPECT_EQ(clusters.size(), kMaxTargets);
+  for (const Target &o : copy) {
+    bool inside = false;
+    for (const Target &c : clusters)
+      inside = inside || length(o.sphere.center - c.sphere.center) + o.sphere.radius <= c.sphere.radius * 1.0001f;
+    EXPECT_TRUE(inside);
   }
 }
 

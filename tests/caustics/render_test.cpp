@@ -116,13 +116,13 @@ TEST(CausticsRender, OffIsThePathTracerBitForBit) {
   EXPECT_EQ(stat(a, "caustics_photon_paths"), -1.0);  // never armed: not even the statistic
 }
 
-// Zero-cost rule: without a sharp material the probe finds nothing, no photon is traced after it, and
-// every camera pass is nimbus.pt's.
+// Zero-cost rule: without a sharp material the host reports no sharp object, no photon is ever traced
+// (not even a probe), and every camera pass is nimbus.pt's.
 TEST(CausticsRender, CausticFreeSceneIsThePathTracer) {
   SceneRenderer r;
   const auto a = r.render(kDiffuseRoom, request("nimbus.caustics", 12, 4));
   const auto b = r.render(kDiffuseRoom, request("nimbus.pt", 12, 4));
-  EXPECT_EQ(stat(a, "caustics_photon_paths"), double(1 << 16));  // the probe only
+  EXPECT_EQ(stat(a, "caustics_photon_paths"), 0.0);
   EXPECT_EQ(stat(a, "caustics_photons"), 0.0);
   EXPECT_EQ(stat(a, "caustics_map_iterations"), 0.0);
   ASSERT_EQ(a.layers.at("beauty").data, b.layers.at("beauty").data);
@@ -202,18 +202,24 @@ void converges_to_light_tracer(const std::string &lights) {
   const Region caustic{40, 14, 60, 32}, core{44, 18, 52, 24};
   const auto lt = r.render(scene, request("nimbus.lt", 2048, 34));
   const auto s1 = r.render(scene, request("nimbus.caustics", 8, 31));
+  const auto s1b = r.render(scene, request("nimbus.caustics", 8, 32));
   const auto s2 = r.render(scene, request("nimbus.caustics", 256, 33));
   const auto s3 = r.render(scene, request("nimbus.caustics", 256, 35));
-  const double e1 = region_rel_mse(s1, lt, caustic), e2 = region_rel_mse(s2, lt, caustic);
-  std::printf(
-      "caustic region: relMSE(solver, lt) %.4g at 8 iterations (%.0f photon paths), %.4g at 256 (%.0f)\n", e1,
-      stat(s1, "caustics_photon_paths"), e2, stat(s2, "caustics_photon_paths"));
+  // The error of the solver alone, from two independent renders at each count (the light tracer's own
+  // noise would set a floor under a comparison with it). In this small image it is photon-limited: the
+  // 8 iterations share the probe's map, 256 iterations have ~7.5x its photon paths over ~10 passes, and
+  // the merge variance ~ 1 / (photon paths r^2) with r^2 ~ j^-1/4 falls ~4x.
+  const double e1 = region_rel_mse(s1, s1b, caustic), e2 = region_rel_mse(s2, s3, caustic);
+  std::printf("caustic region: relMSE between two renders %.4g at 8 iterations (%.0f photon paths), %.4g at "
+              "256 (%.0f); against lt %.4g at 256\n",
+              e1, stat(s1, "caustics_photon_paths"), e2, stat(s2, "caustics_photon_paths"),
+              region_rel_mse(s2, lt, caustic));
   // Two independent renders: the photon noise of a region mean is heavy-tailed.
   const double mean = (region_mean(s2, caustic) + region_mean(s3, caustic)) / 2;
   const double mean_core = (region_mean(s2, core) + region_mean(s3, core)) / 2;
   std::printf("region mean %.4f vs lt %.4f; core %.4f vs %.4f\n", mean, region_mean(lt, caustic), mean_core,
               region_mean(lt, core));
-  EXPECT_GT(e1 / e2, 2.5);
+  EXPECT_GT(e1 / e2, 2.0);
   EXPECT_NEAR(mean / region_mean(lt, caustic), 1.0, 0.03);
   EXPECT_NEAR(mean_core / region_mean(lt, core), 1.0, 0.04);
 }

@@ -169,14 +169,5 @@ TEST(CausticsSchedule, FaintMergesKeepTheMinimumBudget) {
   EXPECT_EQ(s.idle_level(), 1u);
 }
 
-TEST(CausticsSchedule, DormantPlansNothing) {
-  PhotonSchedule s(config(1000));
-  s.pass_done(1, 1 << 16, 0);
-  s.set_dormant(true);
-  for (uint64_t i = 2; i < 2000; ++i) EXPECT_EQ(s.plan(i), 0u);
-  s.set_dormant(false);
-  EXPECT_GT(s.plan(2000), 0u);
-}
-
 }  // namespace
 }  // namespace nimbus::caustics

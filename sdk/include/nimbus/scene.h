@@ -41,6 +41,13 @@ typedef struct nimbus_interaction {
   uint32_t flags;
 } nimbus_interaction_t;
 
+/* Since 1.3: the bounds of one object, as a box and an enclosing sphere (each may be the tighter one). */
+typedef struct nimbus_object_bounds {
+  float lo[3], hi[3];  /* axis-aligned box */
+  float center[3];     /* enclosing sphere */
+  float radius;
+} nimbus_object_bounds_t;
+
 #define NIMBUS_SERVICE_SCENE_QUERY "nimbus.host.scene-query"
 typedef struct nimbus_host_scene_query_v1 {
   uint32_t struct_size;
@@ -64,6 +71,14 @@ typedef struct nimbus_host_scene_query_v1 {
                        nimbus_ray_t *out);
   /* [any-thread] Bounding sphere of the whole scene: center (out) and radius (returned). */
   float (*bounding_sphere)(const nimbus_host_t *host, float center[3]);
+  /* Since 1.3 (absent from older hosts' tables: check NIMBUS_HAS_MEMBER before calling).
+   * [any-thread] Bounds of the geometry that can form caustics: one record per object with positive
+   * area whose material has no diffuse lobe and, somewhere on its surface, only delta lobes or GGX lobes
+   * with alpha below alpha_max (a textured roughness counts by its smallest possible value), in the
+   * host's object order. Writes the first min(count, capacity) records into out (caller storage; may be
+   * NULL when capacity is 0) and returns count. Constant between prepare and end_render. */
+  uint32_t (*sharp_bounds)(const nimbus_host_t *host, float alpha_max, nimbus_object_bounds_t *out,
+                           uint32_t capacity);
 } nimbus_host_scene_query_v1_t;
 
 /* ---- nimbus.host.camera@1 ---------------------------------------------------------------------- */
