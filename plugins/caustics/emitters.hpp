@@ -124,7 +124,8 @@ class EmitterSet {
   // Finite light `l` emitting from `z`: the direction of the component that `u_mix` picks, from (u0, u1)
   // for a cone, or `own` (the host's sampled direction) for the light's own emission and for a cone
   // whose target contains z.
-  Vec3f sample_direction(uint32_t l, const Vec3f &z, float u_mix, float u0, float u1, const Vec3f &own) const {
+  Vec3f sample_direction(uint32_t l, const Vec3f &z, float u_mix, float u0, float u1,
+                         const Vec3f &own) const {
     const Emitter &e = emitters_[l];
     float c = e.own;
     if (u_mix < c) return own;
@@ -219,7 +220,8 @@ class EmitterSet {
   void aim_finite(Emitter &e) const {
     e.own = 1, e.aims.clear();
     if (targets_.empty()) return;
-    const float spot_angle = e.kind == EmitterKind::Spot ? std::acos(std::clamp(e.cos_theta_e, -1.0f, 1.0f)) : kPi;
+    const float spot_angle =
+        e.kind == EmitterKind::Spot ? std::acos(std::clamp(e.cos_theta_e, -1.0f, 1.0f)) : kPi;
     double inside = 0, total = 0;
     for (uint32_t t = 0; t < targets_.clusters.size(); ++t) {
       const Sphere &s = targets_.clusters[t].sphere;
@@ -269,7 +271,8 @@ class EmitterSet {
     const Frame f = Frame::from_normal_tangent(a, edge);
     float r[4] = {kInfinity, -kInfinity, kInfinity, -kInfinity}, far = 0;
     for (int c = 0; c < 8; ++c) {
-      const Vec3f d = Vec3f(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z) - targets_.all.sphere.center;
+      const Vec3f d =
+          Vec3f(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z) - targets_.all.sphere.center;
       const float s = dot(d, f.s), t = dot(d, f.t);
       r[0] = std::min(r[0], s), r[1] = std::max(r[1], s), r[2] = std::min(r[2], t), r[3] = std::max(r[3], t);
       far = std::max(far, length(d));

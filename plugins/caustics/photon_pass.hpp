@@ -26,7 +26,8 @@ class PhotonPass {
   // [main-thread] Traces `paths` photon paths of pass `pass` (1-based) and rebuilds the map. The lookup
   // radii since the last pass (emptied here) set the reach of the map's occupancy filter.
   nimbus_status_t run(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h,
-                      uint32_t pass, uint64_t paths, sdk::PerWorker<RadiusHistogram> &lookup_radii, Result &result);
+                      uint32_t pass, uint64_t paths, sdk::PerWorker<RadiusHistogram> &lookup_radii,
+                      Result &result);
 
   const PhotonKdTree &map() const { return map_; }
   // [main-thread] Frees the map and the buffers (end of a render).

@@ -62,8 +62,9 @@ inline void cluster(std::vector<Target> &objects, size_t k, std::vector<Target> 
   for (const Target &o : objects) lo = min(lo, o.sphere.center), hi = max(hi, o.sphere.center);
   const Vec3f ext = hi - lo;
   const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
-  std::stable_sort(objects.begin(), objects.end(),
-                   [&](const Target &a, const Target &b) { return a.sphere.center[axis] < b.sphere.center[axis]; });
+  std::stable_sort(objects.begin(), objects.end(), [&](const Target &a, const Target &b) {
+    return a.sphere.center[axis] < b.sphere.center[axis];
+  });
   const size_t k0 = k / 2, mid = std::max<size_t>(1, objects.size() * k0 / k);
   std::vector<Target> left(objects.begin(), objects.begin() + ptrdiff_t(mid));
   std::vector<Target> right(objects.begin() + ptrdiff_t(mid), objects.end());

@@ -208,15 +208,16 @@ TEST(CausticsEmitters, ProjectionMapSamplerMatchesItsDensity) {
     EXPECT_NEAR(result.pdf_integral, 1.0, 5e-3) << "light " << l << ": " << result.describe();
     // The camera side's lp is the selection, the host's position density and this mixture.
     const Vec3f w = normalize(Vec3f(0, 0, 0.5f) - z);
-    EXPECT_FLOAT_EQ(set.lp(l, z, n, w, z + w),
-                    set.selection_pmf(l) * (l == 2 ? 4.0f : 1.0f) * set.pdf_dir(l, z, w, pdf_dir_of(l, n, w)));
+    EXPECT_FLOAT_EQ(set.lp(l, z, n, w, z + w), set.selection_pmf(l) * (l == 2 ? 4.0f : 1.0f) *
+                                                   set.pdf_dir(l, z, w, pdf_dir_of(l, n, w)));
   }
 }
 
 // A small ball far from a point light: the light's own (uniform) emission would send ~1e-5 of its
 // photons at it; the projection map sends 90 %, and the density there is the cone's.
 TEST(CausticsEmitters, SmallFarTargetGetsMostPhotons) {
-  std::vector<Target> objects = {{{Vec3f(30, 0, 0.05f), 0.05f}, Vec3f(29.95f, -0.05f, 0), Vec3f(30.05f, 0.05f, 0.1f)}};
+  std::vector<Target> objects = {
+      {{Vec3f(30, 0, 0.05f), 0.05f}, Vec3f(29.95f, -0.05f, 0), Vec3f(30.05f, 0.05f, 0.1f)}};
   SharpTargets t;
   cluster(objects, kMaxTargets, t.clusters);
   t.all = enclose(t.clusters);
@@ -278,7 +279,8 @@ TEST(CausticsEmitters, SunRectangleCoversTheBox) {
       const float um = uniform(rng);
       const Vec3f o = set.emission_origin(0, w, um, uniform(rng), uniform(rng));
       const Vec3f p = o + w * (20 + 5 * uniform(rng));
-      EXPECT_FLOAT_EQ(set.lp(0, Vec3f(), Vec3f(), w, p), set.selection_pmf(0) * set.sun_pdf_pos(0, o, w) * pdf_dir);
+      EXPECT_FLOAT_EQ(set.lp(0, Vec3f(), Vec3f(), w, p),
+                      set.selection_pmf(0) * set.sun_pdf_pos(0, o, w) * pdf_dir);
       if (um >= kOwnShare) EXPECT_FLOAT_EQ(set.sun_pdf_pos(0, o, w), on);
     }
     // A line well outside the rectangle: only the scene disk's photons travel along it.
@@ -302,7 +304,8 @@ TEST(CausticsEmitters, ClustersEncloseEveryObject) {
   for (const Target &o : copy) {
     bool inside = false;
     for (const Target &c : clusters)
-      inside = inside || length(o.sphere.center - c.sphere.center) + o.sphere.radius <= c.sphere.radius * 1.0001f;
+      inside =
+          inside || length(o.sphere.center - c.sphere.center) + o.sphere.radius <= c.sphere.radius * 1.0001f;
     EXPECT_TRUE(inside);
   }
 }

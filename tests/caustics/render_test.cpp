@@ -210,10 +210,11 @@ void converges_to_light_tracer(const std::string &lights) {
   // 8 iterations share the probe's map, 256 iterations have ~7.5x its photon paths over ~10 passes, and
   // the merge variance ~ 1 / (photon paths r^2) with r^2 ~ j^-1/4 falls ~4x.
   const double e1 = region_rel_mse(s1, s1b, caustic), e2 = region_rel_mse(s2, s3, caustic);
-  std::printf("caustic region: relMSE between two renders %.4g at 8 iterations (%.0f photon paths), %.4g at "
-              "256 (%.0f); against lt %.4g at 256\n",
-              e1, stat(s1, "caustics_photon_paths"), e2, stat(s2, "caustics_photon_paths"),
-              region_rel_mse(s2, lt, caustic));
+  std::printf(
+      "caustic region: relMSE between two renders %.4g at 8 iterations (%.0f photon paths), %.4g at "
+      "256 (%.0f); against lt %.4g at 256\n",
+      e1, stat(s1, "caustics_photon_paths"), e2, stat(s2, "caustics_photon_paths"),
+      region_rel_mse(s2, lt, caustic));
   // Two independent renders: the photon noise of a region mean is heavy-tailed.
   const double mean = (region_mean(s2, caustic) + region_mean(s3, caustic)) / 2;
   const double mean_core = (region_mean(s2, core) + region_mean(s3, core)) / 2;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <regex>
 
 #include "e2e_support.hpp"
@@ -86,6 +87,44 @@ TEST(IntegratorOptions, PluginsCommandPrintsTheDeclarations) {
   const ProcessResult none = run_nimbus({"plugins", "--options", "org.example.none"}, dir);
   EXPECT_TRUE(exited_with(none, 1)) << none.describe();
   EXPECT_TRUE(contains(none.err, "org.example.none")) << none.err;
+}
+
+}  // namespace
+}  // namespace nimbus::e2e
+
+namespace nimbus::e2e {
+namespace {
+
+// The shipped default scene at 96 x 96: it names no integrator, so the caustics solver renders it (with
+// photons: it has a glass sphere); `--caustics off` renders exactly what `--integrator pt` renders.
+TEST(IntegratorOptions, CausticsSolverIsTheDefaultAndOffIsThePathTracer) {
+  TestDir dir;
+  const std::filesystem::path shipped =
+      std::filesystem::path(scene("box.yaml")).parent_path() / "../../../scenes/default.yaml";
+  std::string text = read_bytes(shipped.string());
+  ASSERT_EQ(text.find("integrator:"), std::string::npos) << "the default scene must not pick an integrator";
+  const std::string from = "resolution: [512, 512]";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "resolution: [96, 96]");
+  const std::string path = dir.file("default.yaml");
+  write_bytes(path, text);
+  const auto render = [&](std::vector<std::string> extra, const std::string &out) {
+    std::vector<std::string> args = {"render", path, "--iterations", "2", "-q", "-o", dir.file(out)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const ProcessResult r = run_nimbus(args, dir);
+    EXPECT_TRUE(exited_with(r, 0)) << r.describe();
+    auto img = read_exr(dir.file(out));
+    EXPECT_TRUE(img.has_value());
+    return img ? *img : ImageLayers{};
+  };
+  const ImageLayers on = render({}, "on.exr"), off = render({"--caustics", "off"}, "off.exr"),
+                    pt = render({"--integrator", "pt"}, "pt.exr");
+  EXPECT_EQ(meta_string(on, "nimbus:integrator"), "nimbus.caustics");
+  EXPECT_GT(meta_number(on, "nimbus:stat:caustics_photons").value_or(0), 0) << "no photon stored";
+  EXPECT_EQ(meta_string(off, "nimbus:integrator"), "nimbus.caustics");
+  EXPECT_EQ(plane(off, "R"), plane(pt, "R"));
+  EXPECT_EQ(plane(off, "B"), plane(pt, "B"));
+  EXPECT_NE(plane(on, "R"), plane(pt, "R"));
 }
 
 }  // namespace

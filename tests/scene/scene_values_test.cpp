@@ -19,7 +19,7 @@ TEST(SceneValues, EmptySceneUsesDefaults) {
     const SceneDesc defaults;
     EXPECT_EQ(scene.path, "test.yaml");
     EXPECT_EQ(scene.render.width, defaults.render.width);
-    EXPECT_EQ(scene.render.integrator, "pt");
+    EXPECT_EQ(scene.render.integrator, "caustics");
     EXPECT_EQ(scene.render.max_depth, defaults.render.max_depth);
     EXPECT_EQ(scene.camera.position, defaults.camera.position);
     EXPECT_FLOAT_EQ(scene.camera.fov_degrees, defaults.camera.fov_degrees);
