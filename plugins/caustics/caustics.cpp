@@ -73,6 +73,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     merge_id_ = services().film->is_active(h, merge_element_) ? merge_element_ : NIMBUS_ELEMENT_INVALID;
     region_pixels_.resize(info.worker_count);
     lookup_radii_.resize(info.worker_count);
+    mis_clamped_.resize(info.worker_count);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
     armed_ = enabled_ && emitters_.emits_photons() && !emitters_.targets().empty();
@@ -103,7 +104,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   void sample(const nimbus_thread_ctx_t &ctx, uint32_t x, uint32_t y, nimbus_rng_t &rng,
               CausticsRecord &rec) {
     if (map_active_) {
-      MergingPath path(merge_, lookup_radii_[ctx]);
+      MergingPath path(merge_, lookup_radii_[ctx], mis_clamped_[ctx]);
       trace(ctx, x, y, rng, rec, path);
     } else {
       sdk::PlainPath path;
@@ -143,6 +144,10 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       progress_->stat_add(h, "caustics_photon_passes", double(stats_.passes));
       progress_->stat_add(h, "caustics_map_iterations", double(stats_.map_iterations));
       progress_->stat_add(h, "caustics_photon_seconds", stats_.photon_seconds);
+      // Paths (camera) and photons whose MIS state saturated (mis.hpp): 0 in any sane scene.
+      uint64_t clamped = stats_.photons_mis_clamped;
+      for (const uint64_t c : mis_clamped_) clamped += c;
+      progress_->stat_add(h, "caustics_mis_clamped", double(clamped));
       const double bytes =
           stats_.photons > 0 ? double(stats_.photon_bytes) / double(stats_.photons) : double(sizeof(Photon));
       progress_->stat_add(h, "caustics_bytes_per_photon", bytes);
@@ -171,6 +176,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
               merge_.radius_per_length,
               scene_radius_};
     stats_.photon_paths += result.paths;
+    stats_.photons_mis_clamped += result.mis_clamped;
     stats_.photons += pass_.map().size();
     stats_.photon_bytes += pass_.map().bytes();
     ++stats_.passes;
@@ -182,6 +188,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   nimbus_element_t merge_element_ = NIMBUS_ELEMENT_INVALID, merge_id_ = NIMBUS_ELEMENT_INVALID;
   sdk::PerWorker<RadiusHistogram> lookup_radii_;  // radii of the lookups since the last photon pass
   sdk::PerWorker<uint64_t> region_pixels_;        // pixels rendered this iteration (per worker)
+  sdk::PerWorker<uint64_t> mis_clamped_;          // camera paths whose MIS state saturated
 
   bool enabled_ = true;  // the `caustics` switch
   bool armed_ = false;   // enabled, and some light emits photons towards sharp geometry
@@ -196,6 +203,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   UsefulPixels useful_;
   struct Stats {
     uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
+    uint64_t photons_mis_clamped = 0;
     double photon_seconds = 0;  // photon tracing and kd-tree builds
   } stats_;
 };

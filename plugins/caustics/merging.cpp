@@ -8,7 +8,7 @@ void merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const
   const float r2 = r * r;
   const float neff = float(mc.map_paths);
   const float inv_paths = 1.0f / neff;
-  const float m_neff = mis(neff), eta = mis(kPi * r2 * neff);
+  const Mis m_neff = mis(Mis(neff)), eta = mis(kPi * r2 * Mis(neff));
   const Vec3f ng = Vec3f::load(ix.ng);
   float wo_arr[3];
   wo.store(wo_arr);
@@ -30,7 +30,7 @@ void merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const
     const Rgb fr = Rgb::load(f);
     if (is_black(fr)) return;
     const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
-                                 m_neff, mis_state.gamma_sum(k));
+                                 m_neff, mis_state.gamma_sum(k), mis_state.clamped);
     const float kernel = kernel_norm * (1 - d2 / r2);
     const Rgb c = fr * Rgb::load(ph.power) * (w * kernel);
     if (!is_finite(c) || is_black(c)) return;

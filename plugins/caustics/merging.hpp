@@ -42,7 +42,15 @@ class MergingPath {
  public:
   static constexpr bool kReversePdfs = true;
 
-  MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii) : mc_(mc), radii_(lookup_radii) {}
+  // mis_clamped (this worker's count of camera paths whose MIS state saturated) grows by one when this
+  // path's did.
+  MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, uint64_t &mis_clamped)
+      : mc_(mc), radii_(lookup_radii), mis_clamped_(mis_clamped) {}
+  ~MergingPath() {
+    if (mis_.clamped) ++mis_clamped_;
+  }
+  MergingPath(const MergingPath &) = delete;
+  MergingPath &operator=(const MergingPath &) = delete;
 
   void arrive(float t, const nimbus_interaction_t &ix, const Vec3f &dir) {
     length_ += t;
@@ -52,7 +60,8 @@ class MergingPath {
   sdk::PathWeight hit(const sdk::LightHit &h) const {
     const float nee_ratio = h.specular ? 0.0f : mis(h.light_pdf / h.bsdf_pdf);
     const float lp = mc_.emitters->lp(h.light, h.p, h.n, h.wo, Vec3f::load(h.prev->p));
-    return {hit_weight(nee_ratio, mis_.s_cam(h.segments), lp), lp > 0 && mis_.eligible(h.segments)};
+    return {hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped),
+            lp > 0 && mis_.eligible(h.segments)};
   }
 
   void vertex(const sdk::PathVertex &v, CausticsRecord &rec) {
@@ -77,19 +86,21 @@ class MergingPath {
     const float d2 = infinite ? 1.0f : ls.dist * ls.dist;
     float nk = s.pmf;  // delta lights
     if (!s.delta) nk = infinite ? s.light_pdf : s.light_pdf * std::abs(dot(Vec3f::load(ls.n), s.wi)) / d2;
-    const float w = nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk);
+    const float w =
+        nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk, mis_.clamped);
     return {w, lp > 0 && mis_.eligible(s.segments)};
   }
 
   void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
                uint32_t segments) {
     mis_.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup_, segments,
-                 kPi * radius_ * radius_ * float(mc_.map_paths));
+                 kPi * Mis(radius_) * radius_ * Mis(mc_.map_paths));
   }
 
  private:
   const MergeContext &mc_;
   RadiusHistogram &radii_;  // this worker's lookup radii
+  uint64_t &mis_clamped_;
   CameraMis mis_;
   float radius_ = 0;     // r_a: fixed at the first rough vertex, used by every lookup (spec 3.5)
   float length_ = 0;     // path length from the lens to the current vertex

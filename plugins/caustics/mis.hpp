@@ -25,9 +25,18 @@
 //   infinite        lp = P_sel * P_dir(w) * P_pos   (P_pos = 1 / (pi R_e^2) on the emission disk)
 //   directional     lp = P_sel * P_pos              (the direction delta cancels)
 // These are pure value types (no host calls) so that tests can drive them with synthetic paths.
+//
+// Range: products of squared pdf ratios over up to 32 vertices overflow float (and, at the extremes,
+// double). Both sides keep their values as doubles with a shared power-of-two scale, renormalised as
+// they grow or shrink, so ratios stay exact; a photon stores log2 A and log2 B as floats. A weight whose
+// competitors overflow even then is 0, the right limit, never inf/inf = NaN. Such weights are noted
+// (`clamped`), and the solver counts those paths as a render statistic.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace nimbus::caustics {
 
@@ -38,42 +47,87 @@ inline constexpr uint32_t kPhotonMaxVertices = 32;
 // Pending camera-side merge terms: a term at x_s' can only be a technique for paths with
 // k - s' <= D_photon, so at most D_photon + 1 terms are alive at once.
 inline constexpr uint32_t kMaxCameraTerms = kPhotonMaxVertices + 1;
+// MIS state values: squared pdf ratios and their products.
+using Mis = double;
 // The MIS exponent beta = 2 applied to one factor.
 inline float mis(float x) { return x * x; }
+inline Mis mis(Mis x) { return x * x; }
+// The values are renormalised when the largest leaves [2^-kMisRescale, 2^kMisRescale].
+inline constexpr int kMisRescale = 400;
+// Moves the power of two of the largest of `values` (if out of range) into exp2; values 2^800 below
+// the largest become 0 (they no longer change any weight).
+template <class Get>
+inline void renormalise(uint32_t n, Get &&value, int &exp2) {
+  Mis largest = 0;
+  for (uint32_t i = 0; i < n; ++i) largest = std::max(largest, value(i));
+  if (!(largest > 0) || !std::isfinite(largest) ||
+      (largest < std::ldexp(1.0, kMisRescale) && largest > std::ldexp(1.0, -kMisRescale)))
+    return;
+  const int e = std::ilogb(largest);
+  for (uint32_t i = 0; i < n; ++i) value(i) = std::ldexp(value(i), -e);
+  exp2 += e;
+}
+// log2 of x * 2^exp2, as a photon stores A and B (-inf for 0).
+inline float stored_log2(Mis x, int exp2) {
+  return x > 0 ? float(std::log2(x) + exp2) : -std::numeric_limits<float>::infinity();
+}
+
+// A sum of camera terms R (times 2^exp2): the value of sum * factor, and whether it overflowed.
+struct MisSum {
+  Mis sum = 0;
+  int exp2 = 0;
+  Mis times(Mis factor, bool &clamped) const {
+    const Mis v = std::ldexp(sum * factor, exp2);
+    if (!(v <= std::numeric_limits<Mis>::max())) clamped = true;
+    return v;
+  }
+};
 
 // Photon-side state of one photon path (spec 3.3, "photon side").
 struct PhotonMis {
-  float A = 0;           // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
-  float B = 0;           // sum over the stored rough vertices s' further towards the light of
+  Mis A = 0;             // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
+  Mis B = 0;             // sum over the stored rough vertices s' further towards the light of
                          // q_M,s' / q_M,s, over the same factors except the radius ratio (included)
+  int exp2 = 0;          // A and B are A * 2^exp2 and B * 2^exp2
   bool b_valid = false;  // some stored rough vertex precedes (B is a sum of >= 1 terms)
+
+  float log2_A() const { return stored_log2(A, exp2); }
+  float log2_B() const { return stored_log2(B, exp2); }
 
   // Emission. hittable: BSDF sampling can hit the emitter (area and non-delta infinite lights).
   // cos_e: |cos| at the emitter between its normal and the photon direction (1 for infinite lights).
   void emit(bool hittable, float cos_e, float lp) {
-    A = hittable && lp > 0 ? mis(cos_e / lp) : 0.0f;
+    A = hittable && lp > 0 ? mis(Mis(cos_e) / lp) : 0.0;
     B = 0;
+    exp2 = 0;
     b_valid = false;
+    rescale();
   }
   // Arrival at a vertex; c_in = |cos| there between the geometric normal and the arriving segment.
   void arrive(float c_in) {
-    const float m = mis(c_in);
+    const Mis m = mis(Mis(c_in));
     A /= m;
     B /= m;
+    rescale();
   }
   // Scattering at the current vertex: c_out = |cos| of the new direction, w_fwd its pdf, w_rev the pdf
   // of the reverse direction (what a camera path would use). E: NEE term of the first vertex (below), 0
   // elsewhere. rough / stored: the vertex's class and whether a photon was stored at it (then the merge
   // there is a technique for every longer path through it).
-  void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, float E) {
-    const float g = mis(c_out / w_fwd);
-    A = g * (mis(w_rev) * A + E);
+  void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, Mis E) {
+    const Mis g = mis(Mis(c_out) / w_fwd), r = mis(Mis(w_rev));
+    A = g * (r * A + std::ldexp(E, -exp2));
     if (rough) {
-      B = g * (mis(w_rev) * B + (stored ? 1.0f : 0.0f));
+      B = g * (r * B + (stored ? std::ldexp(1.0, -exp2) : 0.0));
       b_valid = b_valid || stored;
     } else {
-      B = g * mis(w_rev) * B;
+      B = g * r * B;
     }
+    rescale();
+  }
+  void rescale() {
+    renormalise(
+        2, [this](uint32_t i) -> Mis & { return i == 0 ? A : B; }, exp2);
   }
 };
 
@@ -81,15 +135,15 @@ struct PhotonMis {
 // nk: the NEE area density of x_k seen from x_{k-1} including light selection (area lights:
 // pmf * pdf_incident * cos_z / d^2; delta positions: pmf; infinite: pmf * pdf_incident; directional:
 // pmf). d2: squared distance to the emitter (1 for infinite lights). c_in as in arrive().
-inline float photon_nee_term(bool nee_possible, float nk, float d2, float lp, float c_in) {
-  return nee_possible && lp > 0 ? mis(nk * d2 / (lp * c_in)) : 0.0f;
+inline Mis photon_nee_term(bool nee_possible, float nk, float d2, float lp, float c_in) {
+  return nee_possible && lp > 0 ? mis(Mis(nk) * d2 / (Mis(lp) * c_in)) : 0.0;
 }
 
 // One pending camera-side merge term (a merge technique at camera vertex s). No default member
 // initialisers: a camera path's CameraMis leaves its unused terms uninitialised instead of zeroing 660
 // bytes per path.
 struct CameraTerm {
-  float R;
+  Mis R;
   uint32_t s;       // the camera vertex index that created it
   bool has_sharp;   // a sharp vertex after x_s
   bool last_rough;  // the last appended vertex was rough
@@ -102,11 +156,14 @@ struct CameraMis {
   uint32_t n_terms = 0;
   uint32_t rough_count = 0;                // rough vertices among x_1 .. x_j (after append)
   uint32_t d_photon = kPhotonMaxVertices;  // the photon tracer's D_photon (tests vary it)
+  int exp2 = 0;                            // every R is terms[i].R * 2^exp2
+  mutable bool clamped = false;            // a weight's competitors overflowed (see the top)
 
   // Arrival at x_{j+1}: c_in = |cos| at it. Not called for escaped rays (infinite lights).
   void arrive(float c_in) {
-    const float m = mis(c_in);
+    const Mis m = mis(Mis(c_in));
     for (uint32_t i = 0; i < n_terms; ++i) terms[i].R /= m;
+    rescale();
   }
   // Appends the class of the scattering vertex just reached. Returns true when it is a lookup vertex
   // (rough: E1 + E2, lookups at every rough vertex).
@@ -129,9 +186,9 @@ struct CameraMis {
   // Scattering at x_j: c_out, w_fwd, w_rev as in PhotonMis::scatter. lookup: x_j is a lookup vertex
   // (then a new term starts with eta_j = pi r_j^2 * Neff(x_j) * rho(x_j)). Terms that can no longer be
   // merge techniques (dead, or too far from any later emitter for D_photon) are dropped first.
-  void scatter(float c_out, float w_fwd, float w_rev, bool lookup, uint32_t j, float eta) {
-    const float g = mis(c_out / w_fwd);
-    const float r = mis(w_rev);
+  void scatter(float c_out, float w_fwd, float w_rev, bool lookup, uint32_t j, Mis eta) {
+    const Mis g = mis(Mis(c_out) / w_fwd);
+    const Mis r = mis(Mis(w_rev));
     uint32_t n = 0;
     for (uint32_t i = 0; i < n_terms; ++i) {
       CameraTerm t = terms[i];
@@ -141,15 +198,20 @@ struct CameraMis {
     }
     n_terms = n;
     if (lookup && n_terms < kMaxCameraTerms)
-      terms[n_terms++] = CameraTerm{g * mis(eta), j, false, false, false};
+      terms[n_terms++] = CameraTerm{std::ldexp(g * mis(eta), -exp2), j, false, false, false};
+    rescale();
+  }
+  void rescale() {
+    renormalise(
+        n_terms, [this](uint32_t i) -> Mis & { return terms[i].R; }, exp2);
   }
   // S_cam: sum of R over the merge techniques eligible for a path of k segments that ends here (an
   // emitter hit at x_k, or NEE from x_{k-1}): E3 on the camera vertices after s, and x_{k-1} (the last
   // vertex appended, the photon's first) sharp: the photon tracer ends paths whose first vertex is rough.
-  float s_cam(uint32_t k) const {
-    float s = 0;
+  MisSum s_cam(uint32_t k) const {
+    MisSum s{0, exp2};
     for (uint32_t i = 0; i < n_terms; ++i)
-      if (live(terms[i], k)) s += terms[i].R;
+      if (live(terms[i], k)) s.sum += terms[i].R;
     return s;
   }
   // Whether any merge technique is eligible for a path of k segments ending here (caustics element).
@@ -163,20 +225,21 @@ struct CameraMis {
   }
   // Sum of R over the terms that stay merge techniques when a photon of depth k - s completes the path
   // at the current lookup vertex x_s (after append): the photon supplies the sharp vertex.
-  float gamma_sum(uint32_t k) const {
-    float s = 0;
+  MisSum gamma_sum(uint32_t k) const {
+    MisSum s{0, exp2};
     for (uint32_t i = 0; i < n_terms; ++i) {
       const CameraTerm &t = terms[i];
-      if (!t.dead && k - t.s <= d_photon) s += t.R;
+      if (!t.dead && k - t.s <= d_photon) s.sum += t.R;
     }
     return s;
   }
 };
 
-// Balance of the weights, guarding against 0/0 and overflow (an infinite competitor gives weight 0).
-inline float mis_weight(float others) {
-  const float w = 1.0f / (1.0f + others);
-  return w >= 0 && w <= 1 ? w : 0.0f;
+// Balance of the weights. `others` is finite unless it overflowed (weight 0: the right limit) or an input pdf
+// was NaN (then the technique gets weight 0).
+inline float mis_weight(Mis others) {
+  const Mis w = 1.0 / (1.0 + others);
+  return w >= 0 && w <= 1 ? float(w) : 0.0f;
 }
 
 // Weight of NEE from x_j to an emitter point (spec 3.3).
@@ -185,17 +248,18 @@ inline float mis_weight(float others) {
 //   w_rev:      omega^L_j(z ->): pdf of scattering from the light's direction back to x_{j-1}
 //   s_cam:      CameraMis::s_cam(j + 1) after appending x_j
 //   lp, g, nk:  emitter product, receiver geometry (cos_j / d^2, or cos_j), NEE area density
-inline float nee_weight(float hit_ratio, float w_rev, float s_cam, float lp, float g, float nk) {
-  float merges = 0;
-  if (s_cam > 0 && lp > 0) merges = mis(w_rev) * s_cam * mis(lp * g / nk);
+inline float nee_weight(float hit_ratio, float w_rev, const MisSum &s_cam, float lp, float g, float nk,
+                        bool &clamped) {
+  Mis merges = 0;
+  if (s_cam.sum > 0 && lp > 0) merges = s_cam.times(mis(Mis(w_rev)) * mis(Mis(lp) * g / nk), clamped);
   return mis_weight(hit_ratio + merges);
 }
 
 // Weight of a BSDF-sampled emitter hit. nee_ratio = q_N / q_H (nimbus.pt's ratio; 0 when NEE could not
 // have sampled it); s_cam after arrival (finite emitters) or after the scatter (infinite ones).
-inline float hit_weight(float nee_ratio, float s_cam, float lp) {
-  float merges = 0;
-  if (s_cam > 0 && lp > 0) merges = s_cam * mis(lp);
+inline float hit_weight(float nee_ratio, const MisSum &s_cam, float lp, bool &clamped) {
+  Mis merges = 0;
+  if (s_cam.sum > 0 && lp > 0) merges = s_cam.times(mis(Mis(lp)), clamped);
   return mis_weight(nee_ratio + merges);
 }
 
@@ -205,11 +269,14 @@ inline float hit_weight(float nee_ratio, float s_cam, float lp) {
 //   eta:        mis(pi r_s^2 * Neff_s * rho_s); neff: mis(Neff_s * rho_s); neff_b: mis(Neff at B's
 //               vertices) (v1: Neff is the same everywhere)
 //   gamma_sum:  CameraMis::gamma_sum(s + depth) (its terms carry their own eta)
-inline float merge_weight(float A, float B, bool b_valid, bool prev_rough, float w_cam_fwd, float w_cam_rev,
-                          float eta, float neff, float neff_b, float gamma_sum) {
-  float light = A / eta;
-  if (b_valid) light += B * neff_b / neff;
-  const float others = mis(w_cam_fwd) * light + (prev_rough ? 0.0f : mis(w_cam_rev) * gamma_sum / eta);
+inline float merge_weight(float log2_A, float log2_B, bool b_valid, bool prev_rough, float w_cam_fwd,
+                          float w_cam_rev, Mis eta, Mis neff, Mis neff_b, const MisSum &gamma_sum,
+                          bool &clamped) {
+  Mis light = std::exp2(Mis(log2_A)) / eta;
+  if (b_valid) light += std::exp2(Mis(log2_B)) * neff_b / neff;
+  Mis others = mis(Mis(w_cam_fwd)) * light;
+  if (!(others <= std::numeric_limits<Mis>::max())) clamped = true;
+  if (!prev_rough && gamma_sum.sum > 0) others += gamma_sum.times(mis(Mis(w_cam_rev)) / eta, clamped);
   return mis_weight(others);
 }
 

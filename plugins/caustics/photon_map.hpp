@@ -58,7 +58,7 @@ struct PhotonData {
   uint32_t dir;     // octahedral: the incoming direction, pointing back to where the photon came from
   uint32_t normal;  // octahedral: geometric normal at p (side test)
   float power[3];   // flux carried, before division by the pass's photon path count
-  float A, B;       // MIS state (mis.hpp, PhotonMis) at arrival
+  float A, B;       // MIS state (mis.hpp, PhotonMis) at arrival: log2 A and log2 B
   uint32_t bits;    // depth (6) | prev_rough (1) | b_valid (1) | light index (24)
 
   static constexpr uint32_t kMaxLight = (1u << 24) - 1;

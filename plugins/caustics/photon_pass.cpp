@@ -50,8 +50,9 @@ nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_ta
   // Concatenate in task order: photon indices never depend on threads.
   size_t total = 0;
   uint64_t done = 0;
-  for (const PhotonChunk &c : chunks_) total += c.photons.size(), done += c.paths;
   result = {};
+  for (const PhotonChunk &c : chunks_)
+    total += c.photons.size(), done += c.paths, result.mis_clamped += c.mis_clamped;
   const sdk::ParallelFor parallel = sdk::host_parallel_for(tasks, h);
   // The chunks in task order, copied concurrently.
   photons_.resize(total);

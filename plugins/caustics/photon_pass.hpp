@@ -20,7 +20,8 @@ namespace nimbus::caustics {
 class PhotonPass {
  public:
   struct Result {
-    uint64_t paths = 0;  // photon paths completed (N_eff of the new map)
+    uint64_t paths = 0;        // photon paths completed (N_eff of the new map)
+    uint64_t mis_clamped = 0;  // photons whose MIS state saturated
   };
 
   // [main-thread] Traces `paths` photon paths of pass `pass` (1-based) and rebuilds the map. The lookup

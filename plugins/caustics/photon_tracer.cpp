@@ -104,7 +104,7 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
     // the emission target; tracing them on would cost a large share of the photon vertices.
     if (rough && depth == 1) return;
     const bool smooth_only = !has(lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
-    float nee_term = 0;
+    Mis nee_term = 0;
     if (depth == 1 && !smooth_only) nee_term = first_vertex_nee(ix, light, em, es, wo, lp, c_in);
 
     // Store after a sharp bounce; a photon of depth d completes paths of >= d + 1 segments.
@@ -115,8 +115,8 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
       ph.dir = encode_octahedral(wo);
       ph.normal = encode_octahedral(ng);
       beta.store(ph.power);
-      ph.A = mis_state.A;
-      ph.B = mis_state.B;
+      ph.A = mis_state.log2_A();
+      ph.B = mis_state.log2_B();
       ph.bits = Photon::pack(depth, prev_rough, mis_state.b_valid, light);
       out.photons.push_back(ph);
     }
@@ -130,7 +130,7 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
     if (!(bs.pdf > 0)) return;
     const Vec3f wi = Vec3f::load(bs.wi);
     const bool delta = has(bs.lobe, NIMBUS_LOBE_SPECULAR);
-    mis_state.scatter(std::abs(dot(ng, wi)), bs.pdf, bs.pdf_rev, rough, stored, delta ? 0.0f : nee_term);
+    mis_state.scatter(std::abs(dot(ng, wi)), bs.pdf, bs.pdf_rev, rough, stored, delta ? 0.0 : nee_term);
     const Rgb t = Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(ix.ns))) / bs.pdf);
     // Russian roulette on this bounce's throughput: photon power stays roughly constant.
     const float q = std::min(1.0f, max_component(t));
@@ -152,9 +152,9 @@ Rgb PhotonTracer::emitted(uint32_t light, const nimbus_light_emission_t &es, con
 }
 
 // E of the first photon vertex: how NEE from it would have sampled the emission point.
-float PhotonTracer::first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
-                                     const nimbus_light_emission_t &es, const Vec3f &wo, float lp,
-                                     float c_in) const {
+Mis PhotonTracer::first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
+                                   const nimbus_light_emission_t &es, const Vec3f &wo, float lp,
+                                   float c_in) const {
   const nimbus_host_t *h = h_;
   const float pmf = sampler_iface_->pmf(sampler_, &ix, light);
   if (!(pmf > 0)) return 0;

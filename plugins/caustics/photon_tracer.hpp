@@ -12,6 +12,7 @@
 #include <nimbus/nimbus.hpp>
 
 #include "emitters.hpp"
+#include "mis.hpp"
 #include "photon_map.hpp"
 
 namespace nimbus::caustics {
@@ -20,9 +21,10 @@ namespace nimbus::caustics {
 // their chunks on every path.
 struct alignas(sdk::kCacheLineBytes) PhotonChunk {
   std::vector<Photon> photons;
-  uint64_t paths = 0;  // completed paths
+  uint64_t paths = 0;        // completed paths
+  uint64_t mis_clamped = 0;  // photons whose MIS state saturated (mis.hpp)
   // Empty for the next pass, keeping the buffers' memory.
-  void reset() { photons.clear(), paths = 0; }
+  void reset() { photons.clear(), paths = 0, mis_clamped = 0; }
 };
 
 // Random-number stream of photon path p of photon pass j: derive(p, j, kStreamPhoton).
@@ -46,8 +48,8 @@ class PhotonTracer {
 
  private:
   Rgb emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w) const;
-  float first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
-                         const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const;
+  Mis first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
+                       const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const;
 
   const nimbus_host_t *h_;
   const sdk::PathServices &svc_;

@@ -55,9 +55,10 @@ double log_uniform(std::mt19937_64 &g, double lo, double hi) {
   return std::exp(std::uniform_real_distribution<double>(std::log(lo), std::log(hi))(g));
 }
 
-SyntheticPath random_path(std::mt19937_64 &g) {
+// Pdfs, distances and light products log-uniform over [1/spread, spread]; k up to max_k.
+SyntheticPath random_path(std::mt19937_64 &g, double spread = 1e3, uint32_t max_k = 12) {
   SyntheticPath p;
-  p.k = std::uniform_int_distribution<uint32_t>(2, 12)(g);
+  p.k = std::uniform_int_distribution<uint32_t>(2, max_k)(g);
   p.kind.assign(p.k, VertexKind::Rough);
   p.cos_prev.assign(p.k + 1, 1);
   p.cos_next.assign(p.k, 1);
@@ -70,19 +71,19 @@ SyntheticPath random_path(std::mt19937_64 &g) {
     // Bias towards sharp vertices now and then so that long caustic chains occur.
     p.kind[j] = VertexKind(kind(g));
     if (p.kind[j] != VertexKind::Delta) {
-      p.w_cam[j] = log_uniform(g, 1e-3, 1e3);
-      p.w_light[j] = log_uniform(g, 1e-3, 1e3);
+      p.w_cam[j] = log_uniform(g, 1 / spread, spread);
+      p.w_light[j] = log_uniform(g, 1 / spread, spread);
     }
   }
   for (uint32_t j = 0; j <= p.k; ++j) {
-    if (j >= 1) p.cos_prev[j] = log_uniform(g, 1e-3, 1);
-    if (j < p.k) p.cos_next[j] = log_uniform(g, 1e-3, 1);
-    if (j < p.k) p.d2[j] = log_uniform(g, 1e-3, 1e3);
+    if (j >= 1) p.cos_prev[j] = log_uniform(g, 1 / spread, 1);
+    if (j < p.k) p.cos_next[j] = log_uniform(g, 1 / spread, 1);
+    if (j < p.k) p.d2[j] = log_uniform(g, 1 / spread, spread);
   }
-  p.lp = std::uniform_real_distribution<double>(0, 1)(g) < 0.1 ? 0.0 : log_uniform(g, 1e-3, 1e3);
-  p.n_omega = log_uniform(g, 1e-3, 1e3);
-  p.pmf = log_uniform(g, 1e-3, 1);
-  p.area = log_uniform(g, 1e-3, 1e3);
+  p.lp = std::uniform_real_distribution<double>(0, 1)(g) < 0.1 ? 0.0 : log_uniform(g, 1 / spread, spread);
+  p.n_omega = log_uniform(g, 1 / spread, spread);
+  p.pmf = log_uniform(g, 1 / spread, 1);
+  p.area = log_uniform(g, 1 / spread, spread);
   p.neff = log_uniform(g, 1, 1e6);
   p.d_photon = std::uniform_real_distribution<double>(0, 1)(g) < 0.3
                    ? std::uniform_int_distribution<uint32_t>(2, 6)(g)
@@ -143,7 +144,7 @@ ClosedForm closed_form(const SyntheticPath &p) {
 // ---- production state machines --------------------------------------------------------------------
 struct PhotonAt {
   bool stored = false;
-  float A = 0, B = 0;
+  float A = 0, B = 0;  // log2 A, log2 B
   bool b_valid = false, prev_rough = false;
 };
 
@@ -152,6 +153,8 @@ struct Weights {
   std::vector<double> wm;
   bool hit = false, nee = false;
   std::vector<bool> merged;
+  bool clamped = false;   // a weight's competitors overflowed double
+  bool rescaled = false;  // a state left [2^-400, 2^400] (float would have overflowed long before)
 };
 
 Weights production(const SyntheticPath &p) {
@@ -161,12 +164,12 @@ Weights production(const SyntheticPath &p) {
   std::vector<PhotonAt> at(k + 1);
   PhotonMis pm;
   pm.emit(p.hittable(), p.light == LightKind::Area ? float(p.cos_prev[k]) : 1.0f, lp);
-  bool had_sharp = false, prev_rough = false;
+  bool had_sharp = false, prev_rough = false, rescaled = false;
   for (uint32_t j = k - 1; j >= 1; --j) {
     const float c_in = float(p.cos_next[j]);
     pm.arrive(c_in);
     const bool rough = p.rough(j);
-    float E = 0;
+    Mis E = 0;
     if (j == k - 1 && !p.delta(j)) {
       const float d2 = p.finite() ? float(p.d2[k - 1]) : 1.0f;
       const float nk = float(p.nk());
@@ -174,46 +177,51 @@ Weights production(const SyntheticPath &p) {
     }
     if (rough && j == k - 1) break;  // a path whose first vertex is rough ends there
     const bool stored = rough && had_sharp && (k - j) <= p.d_photon;
-    at[j] = PhotonAt{stored, pm.A, pm.B, pm.b_valid, prev_rough};
+    at[j] = PhotonAt{stored, pm.log2_A(), pm.log2_B(), pm.b_valid, prev_rough};
     if (rough && prev_rough) break;
     pm.scatter(float(p.cos_prev[j]), float(p.w_light[j]), float(p.w_cam[j]), rough, stored, E);
+    rescaled = rescaled || pm.exp2 != 0;
     prev_rough = rough;
     had_sharp = had_sharp || !rough;
   }
   // Camera side, as trace_pixel<true> does.
   Weights w;
+  w.rescaled = rescaled;
   w.wm.assign(k + 1, 0);
   w.merged.assign(k + 1, false);
   CameraMis cm;
   cm.d_photon = p.d_photon;
-  float area = 0;  // pi r_j^2 of the current lookup vertex
-  const float neff = float(p.neff);
+  Mis area = 0;  // pi r_j^2 of the current lookup vertex
+  const Mis neff = Mis(float(p.neff));
   for (uint32_t j = 1; j <= k; ++j) {
     if (j >= 2 && !(j == k && !p.finite())) cm.arrive(j == k ? float(p.cos_prev[k]) : float(p.cos_prev[j]));
     if (j == k) {
       if (p.hittable()) {
         const float nee_ratio = p.delta(k - 1) ? 0.0f : mis(float(p.n_omega / p.w_cam[k - 1]));
-        w.wh = hit_weight(nee_ratio, cm.s_cam(k), lp);
+        w.wh = hit_weight(nee_ratio, cm.s_cam(k), lp, cm.clamped);
         w.hit = true;
       }
       break;
     }
     const bool lookup = cm.append(p.rough(j));
     // The plugin's radius: r_a, fixed at the first rough vertex.
-    if (lookup && cm.rough_count == 1) area = float(p.area);
+    if (lookup && cm.rough_count == 1) area = Mis(float(p.area));
     if (lookup && at[j].stored && p.lp > 0) {
       const PhotonAt &ph = at[j];
       w.wm[j] = merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
-                             mis(area * neff), mis(neff), mis(neff), cm.gamma_sum(k));
+                             mis(area * neff), mis(neff), mis(neff), cm.gamma_sum(k), cm.clamped);
       w.merged[j] = true;
     }
     if (j == k - 1 && !p.delta(j)) {
       const float hit_ratio = p.hittable() ? mis(float(p.w_cam[j] / p.n_omega)) : 0.0f;
-      w.wn = nee_weight(hit_ratio, float(p.w_light[j]), cm.s_cam(k), lp, float(p.g_last()), float(p.nk()));
+      w.wn = nee_weight(hit_ratio, float(p.w_light[j]), cm.s_cam(k), lp, float(p.g_last()), float(p.nk()),
+                        cm.clamped);
       w.nee = true;
     }
     cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, area * neff);
   }
+  w.clamped = cm.clamped;
+  w.rescaled = w.rescaled || cm.exp2 != 0;
   return w;
 }
 
@@ -263,14 +271,46 @@ TEST(CausticsMis, WeightsMatchClosedFormAndSumToOne) {
   EXPECT_GT(long_chains, 500);
 }
 
+// Paths of up to 40 segments with pdfs, cosines and distances over 24 decades: the products overflow
+// float and double. Every weight stays in [0, 1] and they sum to 1 within float precision: the states'
+// shared scales keep every ratio; a weight whose competitors overflow double is 0, the right limit.
+TEST(CausticsMis, ExtremePathsKeepWeightsInRange) {
+  std::mt19937_64 g(7);
+  int saturated = 0, rescaled = 0, checked = 0;
+  for (int n = 0; n < 50000; ++n) {
+    const SyntheticPath p = random_path(g, 1e12, 40);
+    const Weights w = production(p);
+    double sum = (w.hit ? w.wh : 0.0) + (w.nee ? w.wn : 0.0);
+    for (uint32_t s = 1; s < p.k; ++s) {
+      if (!w.merged[s]) continue;
+      ASSERT_TRUE(w.wm[s] >= 0 && w.wm[s] <= 1) << "merge weight " << w.wm[s] << " on path " << n;
+      sum += w.wm[s];
+    }
+    ASSERT_TRUE(!w.hit || (w.wh >= 0 && w.wh <= 1)) << "path " << n;
+    ASSERT_TRUE(!w.nee || (w.wn >= 0 && w.wn <= 1)) << "path " << n;
+    saturated += w.clamped, rescaled += w.rescaled;
+    if (w.hit || w.nee || sum > 0) {
+      EXPECT_NEAR(sum, 1.0, 1e-3) << "path " << n << " (k = " << p.k << ", overflowed " << w.clamped << ")";
+      ++checked;
+    }
+    if (HasFailure()) return;
+  }
+  std::printf(
+      "paths rescaled beyond 2^+-400: %d, with a competitor beyond double: %d, of 50000; paths "
+      "checked: %d\n",
+      rescaled, saturated, checked);
+  EXPECT_GT(rescaled, 1000);
+  EXPECT_GT(checked, 40000);
+}
+
 // Without merge terms (no photon map) the hit and NEE weights are nimbus.pt's power heuristic.
 TEST(CausticsMis, NoMapGivesPathTracerWeights) {
   std::mt19937_64 g(7);
   for (int n = 0; n < 10000; ++n) {
     const float bsdf = float(log_uniform(g, 1e-3, 1e3)), light = float(log_uniform(g, 1e-3, 1e3));
     CameraMis cm;
-    const float wh = hit_weight(mis(light / bsdf), cm.s_cam(3), 1.0f);
-    const float wn = nee_weight(mis(bsdf / light), 1.0f, cm.s_cam(3), 1.0f, 1.0f, light);
+    const float wh = hit_weight(mis(light / bsdf), cm.s_cam(3), 1.0f, cm.clamped);
+    const float wn = nee_weight(mis(bsdf / light), 1.0f, cm.s_cam(3), 1.0f, 1.0f, light, cm.clamped);
     const float ph = bsdf * bsdf / (bsdf * bsdf + light * light),
                 pn = light * light / (bsdf * bsdf + light * light);
     EXPECT_NEAR(wh, ph, 1e-6f * std::max(ph, 1e-6f) + 1e-7f);
@@ -301,7 +341,7 @@ TEST(CausticsMis, SunThroughWaterAfterSeveralDiffuseBouncesHasAMergeTechnique) {
   EXPECT_EQ(lookups, 4u);
   // The sun is reached after 7 segments: the merge at x_5 (last rough vertex) is eligible.
   EXPECT_TRUE(cm.eligible(7));
-  const float w = hit_weight(0.0f, cm.s_cam(7), lp);
+  const float w = hit_weight(0.0f, cm.s_cam(7), lp, cm.clamped);
   EXPECT_LT(w, 1e-6f);
 }
 
@@ -323,7 +363,7 @@ TEST(CausticsMis, RoughFirstPhotonVertexHasNoMergeTechnique) {
   }
   // NEE from x_3 (rough, next to the light): no merge; the same path with x_3 sharp would have one.
   EXPECT_FALSE(cm.eligible(4));
-  EXPECT_EQ(cm.s_cam(4), 0.0f);
+  EXPECT_EQ(cm.s_cam(4).sum, 0.0);
   CameraMis sharp_end;
   const bool rough2[] = {true, false, false};
   for (uint32_t j = 1; j <= 3; ++j) {
@@ -332,7 +372,7 @@ TEST(CausticsMis, RoughFirstPhotonVertexHasNoMergeTechnique) {
     sharp_end.scatter(0.8f, rough2[j - 1] ? 0.25f : 1.0f, rough2[j - 1] ? 0.25f : 1.0f, lookup, j, 100.0f);
   }
   EXPECT_TRUE(sharp_end.eligible(4));
-  EXPECT_GT(sharp_end.s_cam(4), 0.0f);
+  EXPECT_GT(sharp_end.s_cam(4).sum, 0.0);
 }
 
 }  // namespace
