@@ -76,7 +76,11 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     mis_clamped_.resize(info.worker_count);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
-    armed_ = enabled_ && emitters_.emits_photons() && !emitters_.targets().empty();
+    const bool caustics_can_form = emitters_.emits_photons() && !emitters_.targets().empty();
+    armed_ = enabled_ && caustics_can_form;
+    // The `caustics` element is the light of a class of paths (spec 8), with or without a map, and with
+    // the switch off too (then the path tracer's share of that light).
+    classify_ = caustics_can_form && ids().diverted != NIMBUS_ELEMENT_INVALID;
     ScheduleConfig cfg;
     cfg.camera_paths = std::max<uint64_t>(1, uint64_t(width_) * height_);
     schedule_ = PhotonSchedule(cfg);
@@ -105,6 +109,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
               CausticsRecord &rec) {
     if (map_active_) {
       MergingPath path(merge_, lookup_radii_[ctx], mis_clamped_[ctx]);
+      trace(ctx, x, y, rng, rec, path);
+    } else if (classify_) {
+      ClassifyingPath path(emitters_, services().bsdf, host().get());
       trace(ctx, x, y, rng, rec, path);
     } else {
       sdk::PlainPath path;
@@ -190,8 +197,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   sdk::PerWorker<uint64_t> region_pixels_;        // pixels rendered this iteration (per worker)
   sdk::PerWorker<uint64_t> mis_clamped_;          // camera paths whose MIS state saturated
 
-  bool enabled_ = true;  // the `caustics` switch
-  bool armed_ = false;   // enabled, and some light emits photons towards sharp geometry
+  bool enabled_ = true;    // the `caustics` switch
+  bool armed_ = false;     // enabled, and some light emits photons towards sharp geometry
+  bool classify_ = false;  // camera passes without a map sort paths into the `caustics` element
   EmitterSet emitters_;
   float scene_radius_ = 1, theta_pix_ = 0;
   Vec3f scene_center_;

@@ -107,4 +107,40 @@ class MergingPath {
   bool lookup_ = false;  // the current vertex looks photons up
 };
 
+// The plain path (nimbus.pt's estimator: its weights, its image) of camera passes without a photon map
+// while the `caustics` element is requested. It classifies the path's vertices as MergingPath does, so
+// the element holds the light of paths that have an eligible merge technique whether or not a map is
+// active (spec 8: a property of the path, not of the photon schedule).
+class ClassifyingPath : public sdk::PlainPath {
+ public:
+  ClassifyingPath(const EmitterSet &emitters, const nimbus_host_bsdf_v1_t *bsdf, const nimbus_host_t *h)
+      : emitters_(emitters), bsdf_(bsdf), h_(h) {}
+
+  sdk::PathWeight hit(const sdk::LightHit &h) const {
+    sdk::PathWeight w = PlainPath::hit(h);
+    w.divert = mis_.eligible(h.segments) && emitters_.lp(h.light, h.p, h.n, h.wo, Vec3f::load(h.prev->p)) > 0;
+    return w;
+  }
+  void vertex(const sdk::PathVertex &v, CausticsRecord &) {
+    lookup_ = mis_.append(!is_sharp(bsdf_, h_, *v.ix, v.lobes));
+  }
+  sdk::PathWeight nee(const sdk::LightSample &s) const {
+    sdk::PathWeight w = PlainPath::nee(s);
+    w.divert = mis_.eligible(s.segments) && emitters_.lp(s.light, Vec3f::load(s.ls->p), Vec3f::load(s.ls->n),
+                                                         -s.wi, Vec3f::load(s.ix->p)) > 0;
+    return w;
+  }
+  // Only the terms' eligibility is read: the MIS values stay 1.
+  void scatter(const nimbus_interaction_t &, const Vec3f &, const nimbus_bsdf_sample_t &, uint32_t segments) {
+    mis_.scatter(1, 1, 1, lookup_, segments, 1);
+  }
+
+ private:
+  const EmitterSet &emitters_;
+  const nimbus_host_bsdf_v1_t *bsdf_;
+  const nimbus_host_t *h_;
+  CameraMis mis_;
+  bool lookup_ = false;
+};
+
 }  // namespace nimbus::caustics
