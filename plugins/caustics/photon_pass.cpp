@@ -13,9 +13,9 @@ namespace {
 // workers.
 constexpr uint64_t kPhotonPathsPerTask = 1024;
 // A task stops tracing when its buffer holds this many photons per path (a memory guard far above what
-// caustic scenes store). A task that stops early leaves the end of its run of emission strata
-// (emission_strata.hpp) unsampled, so that region of the emitter is missing from the pass: the guard
-// trades that bias for bounded memory, and only in scenes that would otherwise overflow.
+// caustic scenes store). A task that stops early leaves part of its run of emission strata
+// (emission_strata.hpp) unsampled; task_path() starts each pass's run at another place, so the paths
+// left out differ from pass to pass and the map normalised by the completed paths has no fixed hole.
 constexpr uint64_t kPhotonsPerPathCap = 4;
 // Share of lookups whose radius the occupancy filter in front of the photon map covers
 // (occupancy_filter.hpp).
@@ -40,8 +40,8 @@ nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_ta
     PhotonChunk &c = (*j.chunks)[b / kPhotonPathsPerTask];
     c.photons.reserve(256);
     const size_t cap = size_t(e - b) * kPhotonsPerPathCap;
-    for (uint64_t p = b; p < e && c.photons.size() < cap; ++p) {
-      j.tracer->trace(*ctx, p, j.paths, j.pass, c);
+    for (uint64_t i = 0; i < e - b && c.photons.size() < cap; ++i) {
+      j.tracer->trace(*ctx, task_path(j.pass, b, e, i), j.paths, j.pass, c);
       ++c.paths;
     }
   };

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include <nimbus/nimbus.hpp>
+#include <nimbus/cpp/rng.hpp>
 
 #include "emitters.hpp"
 #include "occupancy_filter.hpp"
@@ -16,6 +16,14 @@
 #include "photon_tracer.hpp"
 
 namespace nimbus::caustics {
+
+// The i-th path a task of pass `pass` traces in its run [b, e): the run rotated by an offset hashed from
+// the pass and the run, so that a task cut short by its memory guard leaves out different paths (and
+// emission strata) in every pass.
+inline uint64_t task_path(uint32_t pass, uint64_t b, uint64_t e, uint64_t i) {
+  const uint64_t n = e - b;
+  return b + (i + hash_keys({pass, b}) % n) % n;
+}
 
 class PhotonPass {
  public:
