@@ -73,7 +73,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     merge_id_ = services().film->is_active(h, merge_element_) ? merge_element_ : NIMBUS_ELEMENT_INVALID;
     region_pixels_.resize(info.worker_count);
     lookup_radii_.resize(info.worker_count);
-    mis_clamped_.resize(info.worker_count);
+    tallies_.resize(info.worker_count);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
     const bool caustics_can_form = emitters_.emits_photons() && !emitters_.targets().empty();
@@ -96,6 +96,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     if (const uint64_t paths = schedule_.plan(iteration); paths > 0) {
       const auto t0 = std::chrono::steady_clock::now();
       if (nimbus_status_t s = photon_pass(paths); s != NIMBUS_OK) return s;
+      useful_.map_changed();
       stats_.photon_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       schedule_.pass_done(iteration, merge_.map_paths, pass_.map().size());
     }
@@ -108,7 +109,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   void sample(const nimbus_thread_ctx_t &ctx, uint32_t x, uint32_t y, nimbus_rng_t &rng,
               CausticsRecord &rec) {
     if (map_active_) {
-      MergingPath path(merge_, lookup_radii_[ctx], mis_clamped_[ctx]);
+      MergingPath path(merge_, lookup_radii_[ctx], tallies_[ctx]);
       trace(ctx, x, y, rng, rec, path);
     } else if (classify_) {
       ClassifyingPath path(emitters_, services().bsdf, host().get());
@@ -127,7 +128,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       rec.merge.store(a);
       services().film->accumulate(host().get(), &ctx, merge_id_, x, y, a);
     }
-    if (armed_) useful_.add(size_t(y) * width_ + x, rec.beauty, rec.merge, map_active_);
+    if (armed_) useful_.add(size_t(y) * width_ + x, rec.beauty, rec.merge);
   }
 
   nimbus_status_t end_iteration(uint64_t iteration) override {
@@ -136,8 +137,17 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     uint64_t pixels = 0;
     for (uint64_t &p : region_pixels_) pixels += p, p = 0;
     schedule_.set_camera_paths(pixels);
+    const UsefulPixels::Summary summary = useful_.summarize(pixels, double(schedule_.iterations_per_map()));
     if (map_active_) {
-      schedule_.iteration_done(iteration, useful_.ratios(pixels));
+      // The efficiency model's inputs (spec 5): variances of this window, work per path of each side.
+      uint64_t camera_work = 0, lookup_work = 0;
+      for (CameraTally &t : tallies_)
+        camera_work += t.work, lookup_work += t.lookup_work, stats_.mis_clamped += t.mis_clamped, t = {};
+      const double n_cam = double(std::max<uint64_t>(1, pixels)), rho = schedule_.map_photon_ratio();
+      const double per_photon_path = photon_work_ + (rho > 0 ? double(lookup_work) / (rho * n_cam) : 0.0);
+      const EfficiencySample e{summary.v_merge, summary.v_camera, rho, double(camera_work) / n_cam,
+                               per_photon_path};
+      schedule_.iteration_done(iteration, summary.useful, e);
       ++stats_.map_iterations;
     }
     return NIMBUS_OK;
@@ -151,10 +161,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       progress_->stat_add(h, "caustics_photon_passes", double(stats_.passes));
       progress_->stat_add(h, "caustics_map_iterations", double(stats_.map_iterations));
       progress_->stat_add(h, "caustics_photon_seconds", stats_.photon_seconds);
-      // Paths (camera) and photons whose MIS state saturated (mis.hpp): 0 in any sane scene.
-      uint64_t clamped = stats_.photons_mis_clamped;
-      for (const uint64_t c : mis_clamped_) clamped += c;
-      progress_->stat_add(h, "caustics_mis_clamped", double(clamped));
+      // Camera paths whose MIS weights met an overflow (mis.hpp): 0 in any sane scene.
+      progress_->stat_add(h, "caustics_mis_clamped", double(stats_.mis_clamped));
+      progress_->stat_add(h, "caustics_photon_ratio", schedule_.photon_ratio());
       const double bytes =
           stats_.photons > 0 ? double(stats_.photon_bytes) / double(stats_.photons) : double(sizeof(Photon));
       progress_->stat_add(h, "caustics_bytes_per_photon", bytes);
@@ -183,7 +192,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
               merge_.radius_per_length,
               scene_radius_};
     stats_.photon_paths += result.paths;
-    stats_.photons_mis_clamped += result.mis_clamped;
+    photon_work_ = result.paths > 0 ? double(result.work) / double(result.paths) : 0.0;
     stats_.photons += pass_.map().size();
     stats_.photon_bytes += pass_.map().bytes();
     ++stats_.passes;
@@ -195,7 +204,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   nimbus_element_t merge_element_ = NIMBUS_ELEMENT_INVALID, merge_id_ = NIMBUS_ELEMENT_INVALID;
   sdk::PerWorker<RadiusHistogram> lookup_radii_;  // radii of the lookups since the last photon pass
   sdk::PerWorker<uint64_t> region_pixels_;        // pixels rendered this iteration (per worker)
-  sdk::PerWorker<uint64_t> mis_clamped_;          // camera paths whose MIS state saturated
+  sdk::PerWorker<CameraTally> tallies_;           // camera-path counts while a map is active
 
   bool enabled_ = true;    // the `caustics` switch
   bool armed_ = false;     // enabled, and some light emits photons towards sharp geometry
@@ -205,13 +214,14 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   Vec3f scene_center_;
   uint32_t width_ = 0, height_ = 0;
   PhotonSchedule schedule_;
+  double photon_work_ = 0;  // work units per photon path of the last pass
   PhotonPass pass_;
   MergeContext merge_;  // what camera passes read while the map is active
   bool map_active_ = false;
   UsefulPixels useful_;
   struct Stats {
     uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
-    uint64_t photons_mis_clamped = 0;
+    uint64_t mis_clamped = 0;
     double photon_seconds = 0;  // photon tracing and kd-tree builds
   } stats_;
 };

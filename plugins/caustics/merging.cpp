@@ -3,8 +3,10 @@
 
 namespace nimbus::caustics {
 
-void merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta,
-                   const CameraMis &mis_state, float r, uint32_t s, CausticsRecord &rec) {
+uint32_t merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
+                       const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s,
+                       CausticsRecord &rec) {
+  uint32_t evaluated = 0;
   const float r2 = r * r;
   const float neff = float(mc.map_paths);
   const float inv_paths = 1.0f / neff;
@@ -27,6 +29,7 @@ void merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const
     float wp_arr[3], f[3], pdf_fwd = 0, pdf_rev = 0;
     wp.store(wp_arr);
     mc.bsdf->eval(mc.host, &ix, wo_arr, wp_arr, NIMBUS_MODE_RADIANCE, f, &pdf_fwd, &pdf_rev);
+    ++evaluated;
     const Rgb fr = Rgb::load(f);
     if (is_black(fr)) return;
     const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
@@ -40,6 +43,7 @@ void merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const
       sum += c;
   });
   if (!mc.ids.lightmix && !is_black(sum)) rec.add_merge(beta * sum * inv_paths, 0, mc.ids);
+  return evaluated;
 }
 
 }  // namespace nimbus::caustics

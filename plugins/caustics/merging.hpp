@@ -35,19 +35,26 @@ struct MergeContext {
 };
 
 // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
-void merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo, const Rgb &beta,
-                   const CameraMis &mis_state, float r, uint32_t s, CausticsRecord &rec);
+// Returns the number of photons it evaluated (the budget's work count).
+uint32_t merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
+                       const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, CausticsRecord &rec);
+
+// What one worker's camera paths counted while a map was active.
+struct CameraTally {
+  uint64_t work = 0;         // budget work units (schedule.hpp) of the paths themselves
+  uint64_t lookup_work = 0;  // and of the photons their lookups evaluated
+  uint64_t mis_clamped = 0;  // paths whose MIS weights met an overflow (mis.hpp)
+};
 
 class MergingPath {
  public:
   static constexpr bool kReversePdfs = true;
 
-  // mis_clamped (this worker's count of camera paths whose MIS state saturated) grows by one when this
-  // path's did.
-  MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, uint64_t &mis_clamped)
-      : mc_(mc), radii_(lookup_radii), mis_clamped_(mis_clamped) {}
+  // tally: this worker's counts, which this path adds to.
+  MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, CameraTally &tally)
+      : mc_(mc), radii_(lookup_radii), tally_(tally) {}
   ~MergingPath() {
-    if (mis_.clamped) ++mis_clamped_;
+    if (mis_.clamped) ++tally_.mis_clamped;
   }
   MergingPath(const MergingPath &) = delete;
   MergingPath &operator=(const MergingPath &) = delete;
@@ -65,6 +72,7 @@ class MergingPath {
   }
 
   void vertex(const sdk::PathVertex &v, CausticsRecord &rec) {
+    tally_.work += 2 * kRayWork;  // the ray that found the vertex and its shadow ray
     const bool rough = !is_sharp(mc_.bsdf, mc_.host, *v.ix, v.lobes);
     lookup_ = mis_.append(rough);
     if (lookup_ && mis_.rough_count == 1)
@@ -72,7 +80,8 @@ class MergingPath {
     // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
     if (lookup_ && v.segments + 2 <= mc_.max_depth) {
       radii_.add(radius_);
-      merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, rec);
+      tally_.lookup_work +=
+          kPhotonWork * merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, rec);
     }
   }
 
@@ -100,7 +109,7 @@ class MergingPath {
  private:
   const MergeContext &mc_;
   RadiusHistogram &radii_;  // this worker's lookup radii
-  uint64_t &mis_clamped_;
+  CameraTally &tally_;
   CameraMis mis_;
   float radius_ = 0;     // r_a: fixed at the first rough vertex, used by every lookup (spec 3.5)
   float length_ = 0;     // path length from the lens to the current vertex

@@ -51,8 +51,7 @@ nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_ta
   size_t total = 0;
   uint64_t done = 0;
   result = {};
-  for (const PhotonChunk &c : chunks_)
-    total += c.photons.size(), done += c.paths, result.mis_clamped += c.mis_clamped;
+  for (const PhotonChunk &c : chunks_) total += c.photons.size(), done += c.paths, result.work += c.work;
   const sdk::ParallelFor parallel = sdk::host_parallel_for(tasks, h);
   // The chunks in task order, copied concurrently.
   photons_.resize(total);

@@ -28,8 +28,8 @@ inline uint64_t task_path(uint32_t pass, uint64_t b, uint64_t e, uint64_t i) {
 class PhotonPass {
  public:
   struct Result {
-    uint64_t paths = 0;        // photon paths completed (N_eff of the new map)
-    uint64_t mis_clamped = 0;  // photons whose MIS state saturated
+    uint64_t paths = 0;  // photon paths completed (N_eff of the new map)
+    uint64_t work = 0;   // budget work units (schedule.hpp)
   };
 
   // [main-thread] Traces `paths` photon paths of pass `pass` (1-based) and rebuilds the map. The lookup

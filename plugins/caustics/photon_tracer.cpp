@@ -89,6 +89,7 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
   for (uint32_t depth = 1; depth <= kPhotonMaxVertices; ++depth) {
     nimbus_hit_t hit;
     svc_.scene->intersect(h, &ctx, &ray, &hit, 1);
+    out.work += kRayWork;
     if (hit.geom_id == NIMBUS_NONE) return;
     nimbus_interaction_t ix;
     svc_.scene->interaction(h, &ray, &hit, &ix);
@@ -119,6 +120,7 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
       ph.B = mis_state.log2_B();
       ph.bits = Photon::pack(depth, prev_rough, mis_state.b_valid, light);
       out.photons.push_back(ph);
+      out.work += kPhotonWork;
     }
     if (rough && prev_rough) return;  // two consecutive rough vertices
     if (depth == kPhotonMaxVertices) return;

@@ -14,6 +14,7 @@
 #include "emitters.hpp"
 #include "mis.hpp"
 #include "photon_map.hpp"
+#include "schedule.hpp"
 
 namespace nimbus::caustics {
 
@@ -21,10 +22,10 @@ namespace nimbus::caustics {
 // their chunks on every path.
 struct alignas(sdk::kCacheLineBytes) PhotonChunk {
   std::vector<Photon> photons;
-  uint64_t paths = 0;        // completed paths
-  uint64_t mis_clamped = 0;  // photons whose MIS state saturated (mis.hpp)
+  uint64_t paths = 0;  // completed paths
+  uint64_t work = 0;   // budget work units (schedule.hpp)
   // Empty for the next pass, keeping the buffers' memory.
-  void reset() { photons.clear(), paths = 0, mis_clamped = 0; }
+  void reset() { photons.clear(), paths = 0, work = 0; }
 };
 
 // Random-number stream of photon path p of photon pass j: derive(p, j, kStreamPhoton).

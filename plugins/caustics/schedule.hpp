@@ -1,6 +1,7 @@
 // When to trace photons and how many (spec sections 3.5, 5 and 9), as a small state machine the plugin
-// drives from its iteration hooks: the merge radius schedule, the photon budget from the useful-pixel
-// ratio, interleaving of photon and camera passes, and back-off when photons are useless.
+// drives from its iteration hooks: the merge radius schedule, the photon budget that minimises the
+// image's error at equal time, interleaving of photon and camera passes, and back-off when photons are
+// useless.
 #pragma once
 
 #include <algorithm>
@@ -12,12 +13,7 @@ namespace nimbus::caustics {
 inline constexpr float kRadiusPixels = 1.5f;  // initial merge radius in pixel footprints
 inline constexpr float kRadiusAlpha = 0.75f;  // Knaus-Zwicker alpha: r^2 ~ j^(alpha - 1)
 // Useful pixels (spec 5): a pixel is useful iff Mp > tau Tp, Mp its MIS-weighted merge light and Tp its
-// beauty. Two thresholds, one per decision. The photon budget counts the pixels where merges bring over
-// 10 % of the light, not the spec's 1 % (the LPM constant): by the spec's own rule for tau ("revisit if
-// overhead above target") it trades some equal-time variance for a lower cost per iteration
-// (docs/performance.md §4). Backing off (no photons for a while) still needs no pixel over 1 %: a caustic
-// that is faint everywhere keeps its photons, at N_min per pass.
-inline constexpr double kBudgetThreshold = 0.1;
+// beauty. No useful pixel after an iteration: back off (no photons for a while).
 inline constexpr double kIdleThreshold = 0.01;
 inline constexpr uint32_t kMaxIdleLevel = 8;
 
@@ -37,49 +33,43 @@ inline float merge_radius(float theta_pix, float ell, uint32_t j, float scene_ra
 }
 
 struct ScheduleConfig {
-  uint64_t n_max = uint64_t(1) << 22;  // photon paths per pass at u = 1 (spec 5)
-  // Cap on photon paths per pass relative to the camera paths of one iteration (0: none):
-  // N_max = min(2^22, ratio N_cam). Every camera pass evaluates each stored photon in ~pi 1.5^2 lookups
-  // (one host BSDF call each), so photon work per iteration scales with this ratio. Noise at equal time
-  // is what matters: more iterations per second make up for smaller maps. 0.5 sits near the equal-time
-  // optimum on the caustic scenes: 0.25 does worse on the ring, 1.0 on sphere-point, sphere-area and
-  // glasses (docs/performance.md §6). Metropolis guiding (next issue) wants large batches: revisit the
-  // cap with it. The probe (2^16 paths) is not capped, so small images still interleave several camera
-  // passes per photon pass.
-  double photon_paths_per_camera_path = 0.5;
+  uint64_t n_max = uint64_t(1) << 22;  // photon paths per pass (spec 5: a fixed maximum)
+  uint64_t n_min = uint64_t(1) << 14;
   uint64_t probe = uint64_t(1) << 16;  // the first pass
-  // N_min never below this (the spec's N_min = 2^22 / 64 = 2^16 is kept for the probe). Small caustics
-  // (a useful-pixel ratio near 0) get N_min paths per pass, so the floor sets their photon density. The
-  // spec's 2^16 assumes photons emitted over each light's whole range, most of them missing every
-  // caustic-forming surface. Aimed at the sharp surfaces (emitters.hpp), 2^14 paths store more photons
-  // than 2^16 unaimed ones, and 2^16 would multiply the overhead without lowering the equal-time error
-  // of small caustics (docs/performance.md §6).
-  uint64_t min_floor = 16384;
-  // Cap on the photons a pass stores, relative to the camera paths of one iteration (0: none), applied
-  // through the photons stored per path in the previous pass. Lookups and the map build scale with the
-  // stored photons, not with the paths: where nearly every photon path stores a photon (the pool) the
-  // overhead would exceed the spec's 40 % target, so by the spec's rule for N_max ("revisit if overhead
-  // above target") a pass stores at most 1/8 photon per camera path, at some cost in equal-time variance
-  // (docs/performance.md §4; the tighter 1/10 in §6). Scenes that store less are not affected. 0 removes
-  // the cap (best equal-time error).
-  double stored_photons_per_camera_path = 1.0 / 8;
-  uint64_t camera_paths = 1;  // camera paths per iteration (the render region's pixels)
-
-  uint64_t effective_max() const {
-    if (!(photon_paths_per_camera_path > 0)) return n_max;
-    const double cap = std::round(photon_paths_per_camera_path * double(camera_paths));
-    return std::min(n_max, std::max<uint64_t>(1, uint64_t(cap)));
-  }
-  uint64_t effective_min() const {
-    return std::min(effective_max(), std::max(min_floor, effective_max() / 64));
-  }
+  uint64_t camera_paths = 1;           // camera paths per iteration (the render region's pixels)
 };
 
-// The fraction of the render region's pixels that are useful, at each of the two thresholds.
-struct UsefulRatio {
-  double budget = 0;  // Mp > kBudgetThreshold Tp
-  double idle = 0;    // Mp > kIdleThreshold Tp
+// Work units of the budget's cost model, counted rather than timed so that the photon budget, and so the
+// image, does not depend on the machine's load or the thread count (same seed, same image). A ray with
+// the surface interaction the host builds for it is 2 units; a photon a lookup evaluates (one host BSDF
+// evaluation and the kernel) or a photon stored (copy and kd-tree build) is 1.
+inline constexpr uint64_t kRayWork = 2, kPhotonWork = 1;
+
+// What the solver measured over the last iterations (spec 5's efficiency model): per camera path, the
+// summed relative variance of the image carried by merges (v_merge) and by the rest (v_camera), at
+// photon paths per camera path `rho`; the work per camera path, and per photon path, which includes its
+// share of the lookups (their cost grows with the photons in the map, not with the camera paths).
+struct EfficiencySample {
+  double v_merge = 0, v_camera = 0, rho = 0;
+  double camera_work = 0, photon_work = 0;
 };
+
+// Photon work per iteration is at most this multiple of the camera paths' work. The variance split
+// cannot see the part of the merges' variance that only camera samples reduce (the caustic's variation
+// within a pixel), so where merges carry nearly all the light the extrapolated V_m1 keeps growing with
+// rho; the guard keeps a quarter of every iteration for camera paths.
+inline constexpr double kMaxPhotonWorkRatio = 3;
+
+// The photon paths per camera path that minimise error x time, t(rho) V(rho) with t = c_c + rho c_p and
+// V = V_c + V_m1 / rho, V_m1 = v_merge rho (merge variance falls as 1 / photon paths): rho* =
+// sqrt(V_m1 c_c / (V_c c_p)), the optimal split of a two-stage estimator, within the guard above. 0 when
+// unmeasured.
+inline double optimal_photon_ratio(const EfficiencySample &e) {
+  if (!(e.v_merge > 0) || !(e.rho > 0) || !(e.camera_work > 0) || !(e.photon_work > 0)) return 0;
+  const double guard = kMaxPhotonWorkRatio * e.camera_work / e.photon_work;
+  if (!(e.v_camera > 0)) return guard;
+  return std::min(guard, std::sqrt(e.v_merge * e.rho * e.camera_work / (e.v_camera * e.photon_work)));
+}
 
 class PhotonSchedule {
  public:
@@ -90,39 +80,38 @@ class PhotonSchedule {
   uint64_t plan(uint64_t iteration) const {
     if (iteration < next_pass_) return 0;
     if (passes_ == 0) return cfg_.probe;
-    const uint64_t lo = cfg_.effective_min(), hi = cfg_.effective_max();
-    if (idle_ > 0) return lo;
-    const double n = std::clamp(std::round(u_ * double(hi)), double(lo), double(hi));
-    if (!(cfg_.stored_photons_per_camera_path > 0) || !(yield_ > 0)) return uint64_t(n);
-    const double stored_cap = cfg_.stored_photons_per_camera_path * double(cfg_.camera_paths) / yield_;
-    return uint64_t(std::min(n, std::max(double(lo), std::round(stored_cap))));
+    if (idle_ > 0) return cfg_.n_min;
+    const double n = std::round(rho_ * double(cfg_.camera_paths));
+    return uint64_t(std::clamp(n, double(cfg_.n_min), double(cfg_.n_max)));
   }
 
   // A photon pass of `paths` paths stored `stored` photons before the camera pass of `iteration`.
   void pass_done(uint64_t iteration, uint64_t paths, uint64_t stored) {
     ++passes_;
-    if (paths > 0 && stored > 0) yield_ = double(stored) / double(paths);
     if (stored == 0) {
       active_ = false;
       back_off(iteration);
       return;
     }
     active_ = true;
-    // Large passes serve several camera passes (photon : camera paths ~ 1 over time); small ones are
-    // redone every iteration.
-    const uint64_t k =
-        paths >= cfg_.camera_paths
-            ? std::max<uint64_t>(1, uint64_t(std::llround(double(paths) / double(cfg_.camera_paths))))
-            : 1;
-    next_pass_ = iteration + k;
+    // A pass larger than the budget asks for (the probe, the N_min floor) serves several camera passes,
+    // so that photon paths per camera path stay near rho.
+    const double per_iteration = std::max(1.0, rho_ * double(cfg_.camera_paths));
+    serves_ = paths > per_iteration
+                  ? std::max<uint64_t>(1, uint64_t(std::llround(double(paths) / per_iteration)))
+                  : 1;
+    map_rho_ = double(paths) / (double(serves_) * double(cfg_.camera_paths));
+    next_pass_ = iteration + serves_;
   }
 
-  // After the camera pass of `iteration` (meaningful when a map was active): the useful-pixel ratio at
-  // kBudgetThreshold sizes the next passes, the one at kIdleThreshold decides whether to back off.
-  void iteration_done(uint64_t iteration, UsefulRatio u) {
+  // After the camera pass of `iteration` (meaningful when a map was active): the share of useful pixels
+  // decides whether to back off; the measured efficiency sizes the next passes (rho smoothed in log
+  // space over passes: the variance estimates are noisy).
+  void iteration_done(uint64_t iteration, double useful, const EfficiencySample &e) {
     if (!active_) return;
-    u_ = u.budget;
-    if (u.idle > 0) {
+    if (const double r = optimal_photon_ratio(e); r > 0)
+      rho_ = measured_ ? std::exp(0.5 * (std::log(rho_) + std::log(r))) : r, measured_ = true;
+    if (useful > 0) {
       idle_ = 0;
       return;
     }
@@ -137,7 +126,9 @@ class PhotonSchedule {
   uint32_t passes() const { return passes_; }  // j of the current map
   uint32_t idle_level() const { return idle_; }
   uint64_t next_pass() const { return next_pass_; }
-  double useful_ratio() const { return u_; }
+  double photon_ratio() const { return rho_; }          // rho the budget aims at
+  double map_photon_ratio() const { return map_rho_; }  // photon paths per camera path of the current map
+  uint64_t iterations_per_map() const { return serves_; }
   const ScheduleConfig &config() const { return cfg_; }
 
  private:
@@ -148,10 +139,12 @@ class PhotonSchedule {
   }
 
   ScheduleConfig cfg_;
-  uint64_t next_pass_ = 1;
+  uint64_t next_pass_ = 1, serves_ = 1;
   uint32_t passes_ = 0, idle_ = 0;
-  double u_ = 0;
-  double yield_ = 0;  // photons stored per photon path in the last pass that stored any
+  // Until measured, half a photon path per camera path (the equal-time optimum on the shipped caustic
+  // scenes under the previous, fixed rule).
+  double rho_ = 0.5, map_rho_ = 0;
+  bool measured_ = false;
   bool active_ = false;
 };
 

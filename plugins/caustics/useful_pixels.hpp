@@ -1,10 +1,12 @@
-// Useful pixels (solver spec section 5): per pixel, the accumulated luminance of MIS-weighted merges (Mp)
-// and of the whole sample (Tp). A pixel counts for the photon budget when merges bring more than a
-// fraction kBudgetThreshold of its light, and keeps photons coming at all when they bring more than
-// kIdleThreshold (schedule.hpp).
+// Per-pixel statistics of the camera samples (solver spec section 5), over a recent window: each
+// iteration's end scales the sums by kWindowDecay, so they follow the current photon map rather than the
+// render's history. From them: the useful pixels (Mp > tau Tp, Mp the MIS-weighted merge light and Tp
+// the beauty), and the relative variance one iteration leaves in the image, split into the part the
+// merges carry and the rest (the budget's V_m and V_c). The merges' part is measured between photon
+// maps (half the squared difference of a pixel's merge means under consecutive maps): samples under one
+// map share its photons, so their spread would miss the photon noise that more photons reduce.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -14,34 +16,80 @@
 
 namespace nimbus::caustics {
 
+// Weight of the previous iterations' sums after each iteration: a window of about 8 iterations.
+inline constexpr float kWindowDecay = 0.875f;
+// The relMSE's offset (relMSE = (I - R)^2 / (R^2 + 0.01)): variances are weighted as that error weighs
+// them.
+inline constexpr double kRelativeOffset = 0.01;
+
 class UsefulPixels {
  public:
+  struct Summary {
+    double useful = 0;    // share of the rendered pixels with Mp > kIdleThreshold Tp
+    double v_merge = 0;   // mean over pixels of var(merge part) / (Tp^2 + offset), per iteration
+    double v_camera = 0;  // the same for the rest of the sample (beauty minus merges)
+  };
+
   // [main-thread] Zeroes the sums of a width x height image (0: none kept).
-  void reset(size_t pixels) {
-    merge_.assign(pixels, 0.0f);
-    total_.assign(pixels, 0.0f);
-  }
+  void reset(size_t pixels) { sums_.assign(pixels, Sums{}); }
 
   // [render-thread] One sample of pixel i (each pixel belongs to one tile, so no two threads meet).
-  void add(size_t i, const Rgb &beauty, const Rgb &merged, bool map_active) {
-    total_[i] += luminance(beauty);
-    if (map_active) merge_[i] += luminance(merged);
+  void add(size_t i, const Rgb &beauty, const Rgb &merged) {
+    const float b = luminance(beauty), m = luminance(merged), c = b - m;
+    Sums &s = sums_[i];
+    s.n += 1, s.total += b, s.merge += m, s.camera2 += c * c;
+    s.map_n += 1, s.map_merge += m;
   }
 
-  // [main-thread] The shares of the `pixels` rendered pixels that are useful for the budget and for
-  // staying active. Pixels outside the render region have Mp = Tp = 0 and never count.
-  UsefulRatio ratios(uint64_t pixels) const {
-    uint64_t budget = 0, idle = 0;
-    for (size_t i = 0; i < merge_.size(); ++i) {
-      budget += merge_[i] > float(kBudgetThreshold) * total_[i] ? 1 : 0;
-      idle += merge_[i] > float(kIdleThreshold) * total_[i] ? 1 : 0;
+  // [main-thread] A new photon map replaces the current one: each pixel's merge mean under the old map
+  // is compared with the one before it.
+  void map_changed() {
+    for (Sums &s : sums_) {
+      if (!(s.map_n > 0)) continue;
+      const float mean = s.map_merge / s.map_n;
+      if (s.has_previous) {
+        const float d = 0.5f * (mean - s.previous) * (mean - s.previous);
+        s.between = s.has_between ? kWindowDecay * s.between + (1 - kWindowDecay) * d : d;
+        s.has_between = true;
+      }
+      s.previous = mean, s.has_previous = true;
+      s.map_n = 0, s.map_merge = 0;
     }
-    const auto ratio = [&](uint64_t n) { return pixels ? std::min(1.0, double(n) / double(pixels)) : 0.0; };
-    return {ratio(budget), ratio(idle)};
+  }
+
+  // [main-thread] The summary over the `pixels` rendered pixels (pixels outside the render region have
+  // no samples and never count), for maps that each serve `iterations_per_map` iterations; then the
+  // window moves on.
+  Summary summarize(uint64_t pixels, double iterations_per_map) {
+    Summary out;
+    uint64_t useful = 0;
+    for (Sums &s : sums_) {
+      if (s.n > 0) {
+        useful += s.merge > float(kIdleThreshold) * s.total ? 1 : 0;
+        const double n = s.n, mean_t = s.total / n, mean_c = mean_t - s.merge / n;
+        const double weight = 1 / (mean_t * mean_t + kRelativeOffset);
+        // A map's mean over k iterations has the photon variance of one map: k times that of one of k
+        // iterations' independent maps.
+        if (s.has_between) out.v_merge += double(s.between) * iterations_per_map * weight;
+        out.v_camera += std::max(0.0, s.camera2 / n - mean_c * mean_c) * weight;
+      }
+      s.n *= kWindowDecay, s.total *= kWindowDecay, s.merge *= kWindowDecay, s.camera2 *= kWindowDecay;
+    }
+    if (pixels > 0) {
+      out.useful = std::min(1.0, double(useful) / double(pixels));
+      out.v_merge /= double(pixels), out.v_camera /= double(pixels);
+    }
+    return out;
   }
 
  private:
-  std::vector<float> merge_, total_;  // per pixel: Mp, Tp
+  struct Sums {
+    float n = 0, total = 0, merge = 0, camera2 = 0;  // the window's samples
+    float map_n = 0, map_merge = 0;                  // the current map's samples
+    float previous = 0, between = 0;  // the previous map's merge mean; the variance between maps
+    bool has_previous = false, has_between = false;
+  };
+  std::vector<Sums> sums_;
 };
 
 }  // namespace nimbus::caustics

@@ -29,96 +29,69 @@ TEST(CausticsSchedule, RadiusStartsAtOneAndAHalfPixelsAndShrinks) {
 
 ScheduleConfig config(uint64_t camera_paths) {
   ScheduleConfig c;
-  c.n_max = 1 << 20;
-  c.photon_paths_per_camera_path = 0;    // no cap: N_min = N_max / 64
-  c.min_floor = 1;                       // the schedule's logic, not the floor (tested above)
-  c.stored_photons_per_camera_path = 0;  // nor the cap on stored photons (tested below)
-  c.probe = 1 << 16;
   c.camera_paths = camera_paths;
   return c;
 }
 
-// The cap: a pass holds at most half a camera pass's worth of photon paths (default); N_min = N_max / 64
-// (floored at 2^14: the spec's 2^16 assumed untargeted emission, schedule.hpp).
-TEST(CausticsSchedule, MapSizeCappedByCameraPasses) {
-  ScheduleConfig c;
-  c.n_max = 1 << 22;
-  c.camera_paths = 1280 * 720;
-  EXPECT_EQ(c.effective_max(), 1280u * 720 / 2);
-  EXPECT_EQ(c.effective_min(), 16384u);  // the floor: 1280 * 720 / 2 / 64 is below it
-  c.camera_paths = 4096 * 4096;
-  EXPECT_EQ(c.effective_min(), (1u << 22) / 64);
-  c.n_max = 1 << 24;  // a larger N_max (here the cap, 4096^2 / 2): N_min = N_max / 64 above the floor
-  EXPECT_EQ(c.effective_max(), 4096u * 4096 / 2);
-  EXPECT_EQ(c.effective_min(), 4096u * 4096 / 2 / 64);
-  c.n_max = 1 << 22;
-  c.camera_paths = 10000 * 10000;
-  EXPECT_EQ(c.effective_max(), 1u << 22);
-  c.photon_paths_per_camera_path = 4;
-  c.camera_paths = 640 * 360;
-  EXPECT_EQ(c.effective_max(), 4u * 640 * 360);
-  c.photon_paths_per_camera_path = 1;
-  c.camera_paths = 80 * 45;
-  EXPECT_EQ(c.effective_max(), 80u * 45);
-  EXPECT_EQ(c.effective_min(), 80u * 45);
-  PhotonSchedule s(c);
-  EXPECT_EQ(s.plan(1), 1u << 16);  // the probe is not capped
-  s.pass_done(1, 1 << 16, 10);
-  EXPECT_EQ(s.next_pass(), 1u + 18);  // 65536 / 3600 = 18 camera passes
-  s.iteration_done(18, {1.0, 1.0});
-  EXPECT_EQ(s.plan(19), 80u * 45);
-  s.pass_done(19, 80 * 45, 10);
-  EXPECT_EQ(s.next_pass(), 20u);  // then one photon pass per camera pass
+EfficiencySample sample(double v_merge, double v_camera, double rho, double camera_work, double photon_work) {
+  return {v_merge, v_camera, rho, camera_work, photon_work};
 }
 
-TEST(CausticsSchedule, ProbeThenBudgetFromUsefulPixels) {
+// rho* = sqrt(V_m1 c_c / (V_c c_p)) minimises (c_c + rho c_p)(V_c + V_m1 / rho): checked against a scan
+// of that product, and 0 while anything is unmeasured.
+TEST(CausticsSchedule, OptimalRatioMinimisesErrorTimesCost) {
+  for (const auto &e :
+       {sample(0.02, 0.01, 0.5, 40, 12), sample(1e-4, 0.3, 0.1, 60, 8), sample(0.3, 0.1, 2, 30, 30)}) {
+    const double r = optimal_photon_ratio(e), vm1 = e.v_merge * e.rho;
+    const auto cost = [&](double rho) {
+      return (e.camera_work + rho * e.photon_work) * (e.v_camera + vm1 / rho);
+    };
+    ASSERT_GT(r, 0);
+    for (double f : {0.5, 0.8, 0.95, 1.05, 1.25, 2.0}) EXPECT_GT(cost(r * f), cost(r)) << "factor " << f;
+  }
+  EXPECT_EQ(optimal_photon_ratio(sample(0, 0.01, 0.5, 40, 12)), 0);  // no merge variance: unmeasured
+  EXPECT_EQ(optimal_photon_ratio(sample(0.02, 0.01, 0.5, 40, 0)), 0);
+  // The guard: photon work at most kMaxPhotonWorkRatio times the camera paths' (here 3 x 40 / 12 = 10).
+  EXPECT_DOUBLE_EQ(optimal_photon_ratio(sample(100, 1e-6, 0.5, 40, 12)), 10.0);
+  EXPECT_DOUBLE_EQ(optimal_photon_ratio(sample(100, 0, 0.5, 40, 12)), 10.0);  // merges carry everything
+}
+
+// The probe first; then N = clamp(rho* N_cam, N_min, N_max) with rho* smoothed in log space over passes.
+TEST(CausticsSchedule, ProbeThenTheEfficientBudget) {
   PhotonSchedule s(config(200000));
   EXPECT_EQ(s.plan(1), 1u << 16);  // the probe
   s.pass_done(1, 1 << 16, 500);
   EXPECT_TRUE(s.map_active());
-  s.iteration_done(1, {0.25, 0.25});
-  EXPECT_EQ(s.plan(2), uint64_t(0.25 * (1 << 20)));  // u * N_max
-  s.pass_done(2, uint64_t(0.25 * (1 << 20)), 1000);
-  // 262144 photon paths vs 200000 camera paths: one pass serves round(1.31) = 1 iteration.
-  s.iteration_done(2, {1e-6, 1e-6});
-  EXPECT_EQ(s.plan(3), (1u << 20) / 64);  // clamped to N_min
-  s.pass_done(3, (1 << 20) / 64, 10);
-  s.iteration_done(3, {1.0, 1.0});
-  EXPECT_EQ(s.plan(4), 1u << 20);  // N_max
-  EXPECT_EQ(s.passes(), 3u);
+  EXPECT_NEAR(s.map_photon_ratio(), 65536.0 / 200000, 1e-12);  // smaller than one camera pass: serves one
+  // Measured: merges carry as much variance as the rest, camera paths cost 4x a photon path, at the
+  // probe's ratio: rho* = sqrt(0.3277 * 4) = 1.145.
+  const EfficiencySample e = sample(0.01, 0.01, s.map_photon_ratio(), 40, 10);
+  s.iteration_done(1, 0.2, e);
+  const double rho = optimal_photon_ratio(e);
+  EXPECT_NEAR(s.photon_ratio(), rho, 1e-12);
+  EXPECT_EQ(s.plan(2), uint64_t(std::round(rho * 200000)));
+  s.pass_done(2, s.plan(2), 1000);
+  // The next measurement is smoothed with the first: the geometric mean.
+  const EfficiencySample e2 = sample(0.001, 0.01, s.map_photon_ratio(), 40, 10);
+  s.iteration_done(2, 0.2, e2);
+  EXPECT_NEAR(s.photon_ratio(), std::sqrt(rho * optimal_photon_ratio(e2)), 1e-9);
+  // Clamped to [N_min, N_max].
+  for (int i = 0; i < 60; ++i) s.iteration_done(2, 0.2, sample(1e-12, 1, 1, 1, 1e6));
+  EXPECT_EQ(s.plan(3), 1u << 14);
+  for (int i = 0; i < 60; ++i) s.iteration_done(2, 0.2, sample(1e6, 1e-6, 1, 1e6, 1));
+  EXPECT_EQ(s.plan(3), 1u << 22);  // rho = 3e6 (the guard): N_max
 }
 
-// The cap on stored photons (default 1/8 per camera path) binds through the previous pass's photons per
-// path: a scene storing ~1 photon per path (the pool) gets fewer paths, one storing 0.2 none.
-TEST(CausticsSchedule, StoredPhotonsCappedByCameraPasses) {
-  ScheduleConfig c;
-  c.camera_paths = 640 * 360;
-  PhotonSchedule s(c);
-  EXPECT_EQ(s.plan(1), 1u << 16);
-  s.pass_done(1, 1 << 16, 1 << 16);  // 1 photon per path
-  s.iteration_done(1, {1.0, 1.0});
-  EXPECT_EQ(s.plan(2), 28800u);          // 230400 / 8 stored photons: 28800 paths, not N_max = 115200
-  s.pass_done(2, 28800, 28800 * 3 / 2);  // 1.5 per path: two thirds of the paths
-  s.iteration_done(2, {1.0, 1.0});
-  EXPECT_EQ(s.plan(3), 19200u);
-  s.pass_done(3, 19200, 19200 / 5);  // 0.2 per path: the cap is above N_max
-  s.iteration_done(3, {1.0, 1.0});
-  EXPECT_EQ(s.plan(4), 115200u);
-  s.iteration_done(3, {0.25, 0.25});
-  EXPECT_EQ(s.plan(4), 28800u);      // u N_max, under the cap
-  s.pass_done(4, 28800, 0);          // a pass storing nothing keeps the last yield
-  s.pass_done(5, 1 << 14, 1 << 17);  // 8 per path: the cap, but never below N_min
-  s.iteration_done(5, {1.0, 1.0});
-  EXPECT_EQ(s.plan(s.next_pass()), c.effective_min());
-}
-
+// A pass larger than the budget asks for (the probe of a small image, the N_min floor under a small rho)
+// serves several camera passes, so that photon paths per camera path stay near rho.
 TEST(CausticsSchedule, LargePassesServeSeveralIterations) {
   PhotonSchedule s(config(4096));  // a small image: 4096 camera paths per iteration
-  s.pass_done(1, 1 << 16, 100);    // probe: 65536 paths = 16 camera passes
-  for (uint64_t i = 1; i < 17; ++i) {
-    s.iteration_done(i, {0.5, 0.5});
-    EXPECT_EQ(s.plan(i + 1), i + 1 < 17 ? 0u : uint64_t(0.5 * (1 << 20))) << i;
-  }
+  s.pass_done(1, 1 << 16, 100);    // probe: 65536 paths at rho 0.5 = 32 camera passes
+  EXPECT_EQ(s.next_pass(), 33u);
+  EXPECT_NEAR(s.map_photon_ratio(), 0.5, 1e-12);
+  for (uint64_t i = 1; i < 33; ++i) EXPECT_EQ(s.plan(i + 1), i + 1 < 33 ? 0u : 1u << 14) << i;
+  s.pass_done(33, 1 << 14, 100);  // N_min = 16384 = 8 camera passes at rho 0.5
+  EXPECT_EQ(s.next_pass(), 41u);
 }
 
 TEST(CausticsSchedule, BackOffWhenUseless) {
@@ -127,9 +100,9 @@ TEST(CausticsSchedule, BackOffWhenUseless) {
   EXPECT_FALSE(s.map_active());
   EXPECT_EQ(s.idle_level(), 1u);
   EXPECT_EQ(s.plan(2), 0u);
-  EXPECT_EQ(s.plan(3), (1u << 20) / 64);  // after 2^1 iterations without photons, N_min
-  s.pass_done(3, (1 << 20) / 64, 5);      // photons, but no useful pixel
-  s.iteration_done(3, {0.0, 0.0});
+  EXPECT_EQ(s.plan(3), 1u << 14);  // after 2^1 iterations without photons, N_min
+  s.pass_done(3, 1 << 14, 5);      // photons, but no useful pixel
+  s.iteration_done(3, 0.0, EfficiencySample{});
   EXPECT_FALSE(s.map_active());
   EXPECT_EQ(s.idle_level(), 2u);
   EXPECT_EQ(s.next_pass(), 3u + 1 + 4);
@@ -146,27 +119,9 @@ TEST(CausticsSchedule, BackOffWhenUseless) {
   EXPECT_EQ(s.next_pass(), before + 256);
   // Any useful pixel resets the idle level.
   s.pass_done(s.next_pass(), 1 << 14, 100);
-  s.iteration_done(s.next_pass(), {0.01, 0.01});
+  s.iteration_done(s.next_pass(), 0.01, EfficiencySample{});
   EXPECT_EQ(s.idle_level(), 0u);
   EXPECT_TRUE(s.map_active());
-}
-
-// The budget follows the pixels where merges bring over 10 % of the light; pixels where they bring
-// only 1-10 % keep the map alive at N_min instead of backing off.
-TEST(CausticsSchedule, FaintMergesKeepTheMinimumBudget) {
-  PhotonSchedule s(config(100000));
-  s.pass_done(1, 1 << 16, 500);
-  s.iteration_done(1, {0.0, 0.3});  // no pixel over 10 %, 30 % over 1 %
-  EXPECT_TRUE(s.map_active());
-  EXPECT_EQ(s.idle_level(), 0u);
-  EXPECT_EQ(s.plan(2), (1u << 20) / 64);  // N_min, every iteration
-  s.pass_done(2, (1 << 20) / 64, 50);
-  s.iteration_done(2, {0.125, 0.5});
-  EXPECT_EQ(s.plan(3), uint64_t(0.125 * (1 << 20)));  // the budget reads the 10 % ratio only
-  s.pass_done(3, uint64_t(0.125 * (1 << 20)), 50);
-  s.iteration_done(3, {0.0, 0.0});
-  EXPECT_FALSE(s.map_active());
-  EXPECT_EQ(s.idle_level(), 1u);
 }
 
 }  // namespace
