@@ -77,6 +77,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
     const bool caustics_can_form = emitters_.emits_photons() && !emitters_.targets().empty();
+    emitters_.set_lightmix(ids().lightmix);
     armed_ = enabled_ && caustics_can_form;
     // The `caustics` element is the light of a class of paths (spec 8), with or without a map, and with
     // the switch off too (then the path tracer's share of that light).
@@ -176,7 +177,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     const nimbus_host_t *h = host().get();
     const uint32_t pass = schedule_.passes() + 1;
     if (progress_) progress_->report(h, 0, paths, "photons");
-    const PhotonTracer tracer(h, services(), light_sampler(), light_sampler_iface(), emitters_, max_depth());
+    const PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth());
     PhotonPass::Result result;
     if (nimbus_status_t s = pass_.run(tracer, tasks_, h, pass, paths, lookup_radii_, result); s != NIMBUS_OK)
       return s;

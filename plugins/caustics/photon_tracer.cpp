@@ -158,7 +158,7 @@ Mis PhotonTracer::first_vertex_nee(const nimbus_interaction_t &ix, uint32_t ligh
                                    const nimbus_light_emission_t &es, const Vec3f &wo, float lp,
                                    float c_in) const {
   const nimbus_host_t *h = h_;
-  const float pmf = sampler_iface_->pmf(sampler_, &ix, light);
+  const float pmf = selection_.pmf(&ix, light);
   if (!(pmf > 0)) return 0;
   float wo_arr[3];
   wo.store(wo_arr);

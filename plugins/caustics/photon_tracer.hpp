@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include <nimbus/cpp/light_selection.hpp>
 #include <nimbus/cpp/math.hpp>
 #include <nimbus/cpp/path_services.hpp>
 #include <nimbus/nimbus.hpp>
@@ -34,14 +35,10 @@ inline constexpr uint64_t kStreamPhoton = 0x70686f746f6e;  // "photon"
 // Traces photon paths against the scene, reading only state that is fixed during a photon pass.
 class PhotonTracer {
  public:
-  PhotonTracer(const nimbus_host_t *host, const sdk::PathServices &svc, const nimbus_plugin_t *sampler,
-               const nimbus_light_sampler_v1_t *sampler_iface, const EmitterSet &emitters, uint32_t max_depth)
-      : h_(host),
-        svc_(svc),
-        sampler_(sampler),
-        sampler_iface_(sampler_iface),
-        emitters_(emitters),
-        max_depth_(max_depth) {}
+  // selection: the camera paths' NEE light selection (the photon's first vertex weighs NEE from it).
+  PhotonTracer(const nimbus_host_t *host, const sdk::PathServices &svc, const sdk::LightSelection &selection,
+               const EmitterSet &emitters, uint32_t max_depth)
+      : h_(host), svc_(svc), selection_(selection), emitters_(emitters), max_depth_(max_depth) {}
 
   // [render-thread] Photon path `path` of the `paths` of pass `pass` (1-based), into `out`.
   void trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t paths, uint32_t pass,
@@ -54,8 +51,7 @@ class PhotonTracer {
 
   const nimbus_host_t *h_;
   const sdk::PathServices &svc_;
-  const nimbus_plugin_t *sampler_;
-  const nimbus_light_sampler_v1_t *sampler_iface_;
+  const sdk::LightSelection &selection_;
   const EmitterSet &emitters_;
   uint32_t max_depth_;
 };

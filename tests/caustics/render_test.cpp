@@ -195,14 +195,8 @@ TEST(CausticsRender, CausticsElementIsAClassOfPaths) {
       ASSERT_EQ(L.at("beauty").data, r.render(scene, pt).layers.at("beauty").data);
     }
   }
-  const auto mean_se = [](const std::vector<double> &v) {
-    double m = 0, s2 = 0;
-    for (double x : v) m += x / double(v.size());
-    for (double x : v) s2 += (x - m) * (x - m) / double(v.size() - 1);
-    return std::pair{m, std::sqrt(s2 / double(v.size()))};
-  };
-  const auto [m_on, se_on] = mean_se(on);
-  const auto [m_off, se_off] = mean_se(off);
+  const auto [m_on, se_on] = mean_and_se(on);
+  const auto [m_off, se_off] = mean_and_se(off);
   std::printf("caustics element mean: solver %.5f (SE %.5f), switch off %.5f (SE %.5f)\n", m_on, se_on, m_off,
               se_off);
   EXPECT_GT(m_off, 0.1 * m_on) << "the switched-off solver puts no light in the caustics element";

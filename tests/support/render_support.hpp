@@ -6,8 +6,10 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nimbus/cpp/math.hpp>
@@ -92,6 +94,14 @@ inline Rgb mean_rgb(const std::vector<float> &img) {
   for (size_t i = 0; i < img.size(); ++i) s[i % 3] += img[i];
   const double n = double(img.size() / 3);
   return {float(s[0] / n), float(s[1] / n), float(s[2] / n)};
+}
+
+// The mean of independent estimates (renders of several seeds) and its standard error.
+inline std::pair<double, double> mean_and_se(const std::vector<double> &v) {
+  double m = 0, s2 = 0;
+  for (double x : v) m += x / double(v.size());
+  for (double x : v) s2 += (x - m) * (x - m) / double(v.size() - 1);
+  return {m, std::sqrt(s2 / double(v.size()))};
 }
 
 }  // namespace nimbus::testing

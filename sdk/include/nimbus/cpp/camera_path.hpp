@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <nimbus/cpp/film_elements.hpp>
+#include <nimbus/cpp/light_selection.hpp>
 #include <nimbus/cpp/math.hpp>
 #include <nimbus/cpp/path_services.hpp>
 #include <nimbus/cpp/rng.hpp>
@@ -112,12 +113,16 @@ class CameraPathIntegrator : public Integrator {
       light_group_.push_back(info.group);
       light_info_.push_back(info);
     }
+    std::vector<float> powers;
+    for (const nimbus_light_info_t &info : light_info_) powers.push_back(info.power);
+    selection_.prepare(sampler_, sampler_iface_, light_group_, powers);
     elements_.register_all(svc_.film, h, self().diverted_element());
     return NIMBUS_OK;
   }
 
   nimbus_status_t begin_render(const nimbus_render_info_t &info) override {
     elements_.activate(svc_.film, svc_.lightmix, host().get());
+    selection_.set_lightmix(ids().lightmix);
     records_.resize(info.worker_count);
     return NIMBUS_OK;
   }
@@ -198,7 +203,7 @@ class CameraPathIntegrator : public Integrator {
           LightHit lh{ix.light_id,        specular, prev_pdf, 0,       Vec3f::load(ix.p),
                       Vec3f::load(ix.ng), wo,       &prev,    segments};
           if (!specular)
-            lh.light_pdf = sampler_iface_->pmf(sampler_, &prev, ix.light_id) *
+            lh.light_pdf = selection_.pmf(&prev, ix.light_id) *
                            svc_.lights->pdf_incident(h, ix.light_id, &prev, ray.dir, &ix);
           const PathWeight w = path.hit(lh);
           rec.add(beta * Le * w.w, light_group_[ix.light_id], segments, ids(), w.divert);
@@ -257,8 +262,7 @@ class CameraPathIntegrator : public Integrator {
       if (is_black(Le)) continue;
       LightHit lh{l, specular, prev_pdf, 0, Vec3f(), Vec3f(), -dir, &prev, segments};
       if (!specular)
-        lh.light_pdf =
-            sampler_iface_->pmf(sampler_, &prev, l) * svc_.lights->pdf_incident(h, l, &prev, d, nullptr);
+        lh.light_pdf = selection_.pmf(&prev, l) * svc_.lights->pdf_incident(h, l, &prev, d, nullptr);
       const PathWeight w = path.hit(lh);
       rec.add(beta * Le * w.w, light_group_[l], segments, ids(), w.divert);
     }
@@ -272,8 +276,10 @@ class CameraPathIntegrator : public Integrator {
     const nimbus_host_t *h = host().get();
     const float u_pick = next_uniform(rng);
     const float u_light[2] = {next_uniform(rng), next_uniform(rng)};
+    // LightMix's group mixture takes one more number (only then: without it, the same stream as before).
+    const float u_mix = selection_.lightmix() ? next_uniform(rng) : 0.0f;
     float pmf = 0;
-    const uint32_t light = sampler_iface_->pick(sampler_, &ix, u_pick, &pmf);
+    const uint32_t light = selection_.pick(&ix, u_pick, u_mix, &pmf);
     if (light == NIMBUS_NONE || !(pmf > 0)) return;
     nimbus_light_incident_t ls;
     svc_.lights->sample_incident(h, light, &ix, u_light, &ls);
@@ -306,6 +312,7 @@ class CameraPathIntegrator : public Integrator {
   uint32_t max_depth() const { return max_depth_; }
   const nimbus_plugin_t *light_sampler() const { return sampler_; }
   const nimbus_light_sampler_v1_t *light_sampler_iface() const { return sampler_iface_; }
+  const LightSelection &light_selection() const { return selection_; }  // NEE's choice of light
   const std::vector<nimbus_light_info_t> &light_info() const { return light_info_; }
   const std::vector<uint32_t> &light_groups() const { return light_group_; }  // LightMix group per light
 
@@ -316,6 +323,7 @@ class CameraPathIntegrator : public Integrator {
   PathServices svc_;
   const nimbus_plugin_t *sampler_ = nullptr;
   const nimbus_light_sampler_v1_t *sampler_iface_ = nullptr;
+  LightSelection selection_;
   uint32_t max_depth_ = 16;
   std::vector<uint32_t> infinite_;
   std::vector<uint32_t> light_group_;  // LightMix group of each light
