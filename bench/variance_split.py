@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """How much of a render's error is variance, and which part of the light carries it.
 
-    bench/variance_split.py A.exr B.exr [--reference REF.exr]
+    bench/variance_split.py A.exr B.exr [--reference REF.exr] [--crop X0,Y0,X1,Y1]
 
 A and B: the same scene, integrator and budget, two seeds, rendered with the `caustics` element
 (without it, as from nimbus.pt, beauty only). Per
@@ -11,7 +11,8 @@ expressed in relMSE units as `nimbus compare` does: mean of (a - b)^2 / 2 / (r^2
 eligible merge technique, which nimbus.caustics renders exactly as nimbus.pt does) and for the
 caustics element. With REF, also each render's relMSE and the mean of their bias estimate
 ((a + b) / 2 - r)^2 - var / 2, so relMSE ~ variance + bias^2. Images are read through oiiotool
-(Debian's openimageio-tools) as FITS. Not part of CI.
+(Debian's openimageio-tools) as FITS; --crop limits every figure to the pixels [X0, X1) x [Y0, Y1) (a
+caustic's region). Not part of CI.
 """
 import argparse
 import os
@@ -21,11 +22,18 @@ import tempfile
 import numpy as np
 
 
+CROP = None  # (x0, y0, x1, y1) or None: the whole image
+
+
 def read_channel(path, channel, tmp):
     """One channel as a float array, through a single-plane float FITS file (no PFM writer in Debian 12's
     OIIO): 2880-byte header blocks of 80-character cards up to END, then big-endian float32 data."""
     out = os.path.join(tmp, "channel.fits")
-    subprocess.run(["oiiotool", path, "--ch", channel, "-d", "float", "-o", out], check=True,
+    cut = []
+    if CROP:
+        x0, y0, x1, y1 = CROP
+        cut = ["--cut", f"{x1 - x0}x{y1 - y0}+{x0}+{y0}"]
+    subprocess.run(["oiiotool", path, "--ch", channel] + cut + ["-d", "float", "-o", out], check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     with open(out, "rb") as f:
         raw = f.read()
@@ -60,7 +68,10 @@ def main():
     ap.add_argument("a")
     ap.add_argument("b")
     ap.add_argument("--reference")
+    ap.add_argument("--crop", help="X0,Y0,X1,Y1: pixels [X0, X1) x [Y0, Y1) only")
     args = ap.parse_args()
+    global CROP
+    CROP = tuple(int(v) for v in args.crop.split(",")) if args.crop else None
     with tempfile.TemporaryDirectory() as tmp:
         a, b = read_rgb(args.a, "beauty", tmp), read_rgb(args.b, "beauty", tmp)
         try:

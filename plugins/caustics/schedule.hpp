@@ -39,6 +39,9 @@ struct ScheduleConfig {
   uint64_t camera_paths = 1;           // camera paths per iteration (the render region's pixels)
 };
 
+// Camera passes a photon map serves at least (see pass_done).
+inline constexpr uint64_t kMinIterationsPerMap = 2;
+
 // Work units of the budget's cost model, counted rather than timed so that the photon budget, and so the
 // image, does not depend on the machine's load or the thread count (same seed, same image). A ray with
 // the surface interaction the host builds for it is 2 units; a photon a lookup evaluates (one host BSDF
@@ -81,7 +84,7 @@ class PhotonSchedule {
     if (iteration < next_pass_) return 0;
     if (passes_ == 0) return cfg_.probe;
     if (idle_ > 0) return cfg_.n_min;
-    const double n = std::round(rho_ * double(cfg_.camera_paths));
+    const double n = std::round(rho_ * double(kMinIterationsPerMap) * double(cfg_.camera_paths));
     return uint64_t(std::clamp(n, double(cfg_.n_min), double(cfg_.n_max)));
   }
 
@@ -94,12 +97,11 @@ class PhotonSchedule {
       return;
     }
     active_ = true;
-    // A pass larger than the budget asks for (the probe, the N_min floor) serves several camera passes,
-    // so that photon paths per camera path stay near rho.
+    // A pass serves about paths / (rho N_cam) camera passes, so that photon paths per camera path stay
+    // near rho (the probe and the N_min floor serve more); at least two, so that the variance split
+    // (useful_pixels.hpp) sees samples under one map.
     const double per_iteration = std::max(1.0, rho_ * double(cfg_.camera_paths));
-    serves_ = paths > per_iteration
-                  ? std::max<uint64_t>(1, uint64_t(std::llround(double(paths) / per_iteration)))
-                  : 1;
+    serves_ = std::max<uint64_t>(kMinIterationsPerMap, uint64_t(std::llround(double(paths) / per_iteration)));
     map_rho_ = double(paths) / (double(serves_) * double(cfg_.camera_paths));
     next_pass_ = iteration + serves_;
   }

@@ -1,12 +1,14 @@
 // Per-pixel statistics of the camera samples (solver spec section 5), over a recent window: each
 // iteration's end scales the sums by kWindowDecay, so they follow the current photon map rather than the
 // render's history. From them: the useful pixels (Mp > tau Tp, Mp the MIS-weighted merge light and Tp
-// the beauty), and the relative variance one iteration leaves in the image, split into the part the
-// merges carry and the rest (the budget's V_m and V_c). The merges' part is measured between photon
-// maps (half the squared difference of a pixel's merge means under consecutive maps): samples under one
-// map share its photons, so their spread would miss the photon noise that more photons reduce.
+// the beauty), and the relative variance one iteration leaves in the image, split into the part that
+// more photons reduce (the budget's V_m) and the rest (V_c). A map serves at least two iterations, so
+// each pixel has two or more samples under one map: their spread is the merges' camera-side variance
+// (which only camera samples reduce), and the spread of the per-map means beyond it is the photon noise.
+// Half the squared difference of consecutive maps' means estimates Var(mean) = V_photon + V_within / n.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -38,22 +40,28 @@ class UsefulPixels {
     const float b = luminance(beauty), m = luminance(merged), c = b - m;
     Sums &s = sums_[i];
     s.n += 1, s.total += b, s.merge += m, s.camera2 += c * c;
-    s.map_n += 1, s.map_merge += m;
+    s.map_n += 1, s.map_merge += m, s.map_merge2 += m * m;
   }
 
   // [main-thread] A new photon map replaces the current one: each pixel's merge mean under the old map
   // is compared with the one before it.
   void map_changed() {
     for (Sums &s : sums_) {
-      if (!(s.map_n > 0)) continue;
+      if (!(s.map_n > 1)) {
+        s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0;
+        continue;
+      }
       const float mean = s.map_merge / s.map_n;
+      const float within = std::max(0.0f, (s.map_merge2 - s.map_merge * mean) / (s.map_n - 1));
       if (s.has_previous) {
-        const float d = 0.5f * (mean - s.previous) * (mean - s.previous);
+        // Var(mean) = V_photon + V_within / n: the photon part is what is left.
+        const float d = std::max(0.0f, 0.5f * (mean - s.previous) * (mean - s.previous) - within / s.map_n);
         s.between = s.has_between ? kWindowDecay * s.between + (1 - kWindowDecay) * d : d;
+        s.within = s.has_between ? kWindowDecay * s.within + (1 - kWindowDecay) * within : within;
         s.has_between = true;
       }
       s.previous = mean, s.has_previous = true;
-      s.map_n = 0, s.map_merge = 0;
+      s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0;
     }
   }
 
@@ -68,10 +76,10 @@ class UsefulPixels {
         useful += s.merge > float(kIdleThreshold) * s.total ? 1 : 0;
         const double n = s.n, mean_t = s.total / n, mean_c = mean_t - s.merge / n;
         const double weight = 1 / (mean_t * mean_t + kRelativeOffset);
-        // A map's mean over k iterations has the photon variance of one map: k times that of one of k
-        // iterations' independent maps.
+        // A map's photon noise is shared by the k iterations it serves: k times that of one iteration's
+        // own map. The merges' camera-side variance counts with the rest (camera samples reduce it).
         if (s.has_between) out.v_merge += double(s.between) * iterations_per_map * weight;
-        out.v_camera += std::max(0.0, s.camera2 / n - mean_c * mean_c) * weight;
+        out.v_camera += (std::max(0.0, s.camera2 / n - mean_c * mean_c) + double(s.within)) * weight;
       }
       s.n *= kWindowDecay, s.total *= kWindowDecay, s.merge *= kWindowDecay, s.camera2 *= kWindowDecay;
     }
@@ -85,8 +93,9 @@ class UsefulPixels {
  private:
   struct Sums {
     float n = 0, total = 0, merge = 0, camera2 = 0;  // the window's samples
-    float map_n = 0, map_merge = 0;                  // the current map's samples
-    float previous = 0, between = 0;  // the previous map's merge mean; the variance between maps
+    float map_n = 0, map_merge = 0, map_merge2 = 0;  // the current map's samples
+    float previous = 0;                              // the previous map's merge mean
+    float between = 0, within = 0;                   // photon variance of a map; merges' sample variance
     bool has_previous = false, has_between = false;
   };
   std::vector<Sums> sums_;

@@ -56,30 +56,35 @@ TEST(CausticsSchedule, OptimalRatioMinimisesErrorTimesCost) {
   EXPECT_DOUBLE_EQ(optimal_photon_ratio(sample(100, 0, 0.5, 40, 12)), 10.0);  // merges carry everything
 }
 
-// The probe first; then N = clamp(rho* N_cam, N_min, N_max) with rho* smoothed in log space over passes.
+// The probe first; then N = clamp(2 rho* N_cam, N_min, N_max) for maps that serve two iterations each,
+// with rho* smoothed in log space over passes.
 TEST(CausticsSchedule, ProbeThenTheEfficientBudget) {
   PhotonSchedule s(config(200000));
   EXPECT_EQ(s.plan(1), 1u << 16);  // the probe
   s.pass_done(1, 1 << 16, 500);
   EXPECT_TRUE(s.map_active());
-  EXPECT_NEAR(s.map_photon_ratio(), 65536.0 / 200000, 1e-12);  // smaller than one camera pass: serves one
+  EXPECT_EQ(s.next_pass(), 3u);  // every map serves at least two iterations
+  EXPECT_NEAR(s.map_photon_ratio(), 65536.0 / (2 * 200000), 1e-12);
   // Measured: merges carry as much variance as the rest, camera paths cost 4x a photon path, at the
-  // probe's ratio: rho* = sqrt(0.3277 * 4) = 1.145.
+  // probe's ratio: rho* = sqrt(0.16384 * 4) = 0.81.
   const EfficiencySample e = sample(0.01, 0.01, s.map_photon_ratio(), 40, 10);
   s.iteration_done(1, 0.2, e);
   const double rho = optimal_photon_ratio(e);
   EXPECT_NEAR(s.photon_ratio(), rho, 1e-12);
-  EXPECT_EQ(s.plan(2), uint64_t(std::round(rho * 200000)));
-  s.pass_done(2, s.plan(2), 1000);
+  EXPECT_EQ(s.plan(2), 0u);
+  EXPECT_EQ(s.plan(3), uint64_t(std::round(rho * 2 * 200000)));
+  s.pass_done(3, s.plan(3), 1000);
+  EXPECT_EQ(s.next_pass(), 5u);
+  EXPECT_NEAR(s.map_photon_ratio(), rho, 1e-5);
   // The next measurement is smoothed with the first: the geometric mean.
   const EfficiencySample e2 = sample(0.001, 0.01, s.map_photon_ratio(), 40, 10);
-  s.iteration_done(2, 0.2, e2);
+  s.iteration_done(3, 0.2, e2);
   EXPECT_NEAR(s.photon_ratio(), std::sqrt(rho * optimal_photon_ratio(e2)), 1e-9);
   // Clamped to [N_min, N_max].
-  for (int i = 0; i < 60; ++i) s.iteration_done(2, 0.2, sample(1e-12, 1, 1, 1, 1e6));
-  EXPECT_EQ(s.plan(3), 1u << 14);
-  for (int i = 0; i < 60; ++i) s.iteration_done(2, 0.2, sample(1e6, 1e-6, 1, 1e6, 1));
-  EXPECT_EQ(s.plan(3), 1u << 22);  // rho = 3e6 (the guard): N_max
+  for (int i = 0; i < 60; ++i) s.iteration_done(4, 0.2, sample(1e-12, 1, 1, 1, 1e6));
+  EXPECT_EQ(s.plan(5), 1u << 14);
+  for (int i = 0; i < 60; ++i) s.iteration_done(4, 0.2, sample(1e6, 1e-6, 1, 1e6, 1));
+  EXPECT_EQ(s.plan(5), 1u << 22);  // rho = 3e6 (the guard): N_max
 }
 
 // A pass larger than the budget asks for (the probe of a small image, the N_min floor under a small rho)
