@@ -35,6 +35,7 @@ std::string plugin_dir() {
 void BM_PathTracerDefaultScene(benchmark::State &state) {
   auto desc = parse_scene_file(kScene);
   if (!desc) return state.SkipWithError(desc.error().message.c_str());
+  desc->render.integrator = "pt";  // the scene names none: the default would be the caustics solver
   PluginRegistry registry([](int, const std::string &) {});
   HostServices discovery(nullptr);
   registry.discover({plugin_dir()}, discovery.host());
