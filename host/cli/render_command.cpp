@@ -42,7 +42,7 @@ constexpr const char *kHelp =
     "  --threads N            worker threads (default: all cores)\n"
     "  --seed S               random seed (overrides the scene)\n"
     "  --elements a,b,...     render elements besides beauty (added to the scene's)\n"
-    "  --integrator ID        integrator plugin (overrides the scene), e.g. pt, nimbus.pt\n"
+    "  --integrator ID        integrator plugin (overrides the scene; default caustics), e.g. pt, nimbus.pt\n"
     "  --light-sampler ID     light sampler plugin (default: nimbus.lights.tree above 8 lights,\n"
     "                         nimbus.lights.power otherwise)\n"
     "  --filter NAME          pixel filter: box, gaussian, blackman-harris (overrides the scene)\n"
