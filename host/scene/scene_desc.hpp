@@ -28,7 +28,7 @@ struct RenderDesc {
   double time_seconds = 0;  // 0 = no time budget
   double target_error = 0;  // relMSE estimate to stop at; 0 = no error target
   uint64_t seed = 1;
-  uint32_t max_depth = 16;        // path length in segments: a camera ray that hits a light is 1
+  uint32_t max_depth = 16;              // path length in segments: a camera ray that hits a light is 1
   std::string integrator = "caustics";  // short name (pt, lt, caustics) or full plugin id
   // Options for the bound integrator (render keys the host does not know, e.g. caustics: off, and
   // --<name> flags), as written: the integrator's declarations decide, once it is bound, whether a key

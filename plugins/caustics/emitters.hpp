@@ -21,6 +21,7 @@
 #include <nimbus/lights.h>
 
 #include <algorithm>
+#include <map>
 #include <vector>
 
 #include <nimbus/cpp/alias_table.hpp>
@@ -124,23 +125,15 @@ class EmitterSet {
       table_ = AliasTable(rule_);
       return;
     }
-    std::vector<std::pair<uint32_t, double>> groups;  // (group, its rule weight)
+    std::map<uint32_t, double> group_weight;  // the rule's weight of each group that emits
     double total = 0;
-    for (size_t i = 0; i < rule_.size(); ++i) {
-      if (!(rule_[i] > 0)) continue;
-      total += rule_[i];
-      auto g = std::find_if(groups.begin(), groups.end(),
-                            [&](const auto &x) { return x.first == emitters_[i].group; });
-      if (g == groups.end()) groups.push_back({emitters_[i].group, 0.0}), g = groups.end() - 1;
-      g->second += rule_[i];
-    }
+    for (size_t i = 0; i < rule_.size(); ++i)
+      if (rule_[i] > 0) total += rule_[i], group_weight[emitters_[i].group] += rule_[i];
     std::vector<double> w(rule_.size(), 0.0);
-    for (size_t i = 0; i < rule_.size(); ++i) {
-      if (!(rule_[i] > 0)) continue;
-      const auto g = std::find_if(groups.begin(), groups.end(),
-                                  [&](const auto &x) { return x.first == emitters_[i].group; });
-      w[i] = 0.5 * rule_[i] / total + 0.5 * rule_[i] / (g->second * double(groups.size()));
-    }
+    for (size_t i = 0; i < rule_.size(); ++i)
+      if (rule_[i] > 0)
+        w[i] = 0.5 * rule_[i] / total +
+               0.5 * rule_[i] / (group_weight[emitters_[i].group] * double(group_weight.size()));
     table_ = AliasTable(w);
   }
 
@@ -167,6 +160,13 @@ class EmitterSet {
       }
     }
     return own;
+  }
+  // The direction density of finite light `l`'s mixture at w from z (area lights: normal n), asking the
+  // host for its own density there: what the photon tracer samples with.
+  float finite_pdf_dir(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w) const {
+    float pdf_pos = 0, own_pdf = 0;
+    host_pdfs(l, z, n, w, pdf_pos, own_pdf);
+    return pdf_dir(l, z, w, own_pdf);
   }
   // The direction density of that mixture at w, given the host's own density there.
   float pdf_dir(uint32_t l, const Vec3f &z, const Vec3f &w, float own_pdf) const {

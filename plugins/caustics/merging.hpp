@@ -39,6 +39,15 @@ struct MergeContext {
 uint32_t merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                        const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, CausticsRecord &rec);
 
+// lp (mis.hpp) of the light a camera path hit, and of the one its NEE sampled: the photon density of
+// the path's last segment, 0 where no photon is emitted that way (then no merge technique exists).
+inline float hit_lp(const EmitterSet &emitters, const sdk::LightHit &h) {
+  return emitters.lp(h.light, h.p, h.n, h.wo, Vec3f::load(h.prev->p));
+}
+inline float nee_lp(const EmitterSet &emitters, const sdk::LightSample &s) {
+  return emitters.lp(s.light, Vec3f::load(s.ls->p), Vec3f::load(s.ls->n), -s.wi, Vec3f::load(s.ix->p));
+}
+
 // What one worker's camera paths counted while a map was active.
 struct CameraTally {
   uint64_t work = 0;         // budget work units (schedule.hpp) of the paths themselves
@@ -66,7 +75,7 @@ class MergingPath {
 
   sdk::PathWeight hit(const sdk::LightHit &h) const {
     const float nee_ratio = h.specular ? 0.0f : mis(h.light_pdf / h.bsdf_pdf);
-    const float lp = mc_.emitters->lp(h.light, h.p, h.n, h.wo, Vec3f::load(h.prev->p));
+    const float lp = hit_lp(*mc_.emitters, h);
     return {hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped),
             lp > 0 && mis_.eligible(h.segments)};
   }
@@ -89,8 +98,7 @@ class MergingPath {
     const nimbus_light_incident_t &ls = *s.ls;
     const bool infinite = ls.flags & NIMBUS_LIGHT_INFINITE;
     const float hit_ratio = s.delta ? 0.0f : mis(s.bsdf_pdf / s.light_pdf);
-    const float lp =
-        mc_.emitters->lp(s.light, Vec3f::load(ls.p), Vec3f::load(ls.n), -s.wi, Vec3f::load(s.ix->p));
+    const float lp = nee_lp(*mc_.emitters, s);
     const float cos_j = std::abs(dot(Vec3f::load(s.ix->ng), s.wi));
     const float d2 = infinite ? 1.0f : ls.dist * ls.dist;
     float nk = s.pmf;  // delta lights
@@ -127,7 +135,7 @@ class ClassifyingPath : public sdk::PlainPath {
 
   sdk::PathWeight hit(const sdk::LightHit &h) const {
     sdk::PathWeight w = PlainPath::hit(h);
-    w.divert = mis_.eligible(h.segments) && emitters_.lp(h.light, h.p, h.n, h.wo, Vec3f::load(h.prev->p)) > 0;
+    w.divert = mis_.eligible(h.segments) && hit_lp(emitters_, h) > 0;
     return w;
   }
   void vertex(const sdk::PathVertex &v, CausticsRecord &) {
@@ -135,8 +143,7 @@ class ClassifyingPath : public sdk::PlainPath {
   }
   sdk::PathWeight nee(const sdk::LightSample &s) const {
     sdk::PathWeight w = PlainPath::nee(s);
-    w.divert = mis_.eligible(s.segments) && emitters_.lp(s.light, Vec3f::load(s.ls->p), Vec3f::load(s.ls->n),
-                                                         -s.wi, Vec3f::load(s.ix->p)) > 0;
+    w.divert = mis_.eligible(s.segments) && nee_lp(emitters_, s) > 0;
     return w;
   }
   // Only the terms' eligibility is read: the MIS values stay 1.

@@ -64,11 +64,7 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
     pdf_pos = emitters_.sun_pdf_pos(light, org, dir0);
   } else {
     dir0 = emitters_.sample_direction(light, org, u_mix, ue[2], ue[3], dir0);
-    // The host's own density at the direction, as the camera side asks for it.
-    float host_pos = 0, own_pdf = 0, wa[3];
-    dir0.store(wa);
-    svc_.lights->pdf_emission(h, light, es.org, es.n, wa, &host_pos, &own_pdf);
-    pdf_dir = emitters_.pdf_dir(light, org, dir0, own_pdf);
+    pdf_dir = emitters_.finite_pdf_dir(light, org, n_e, dir0);
     if (dir0 != Vec3f::load(es.dir)) Le = emitted(light, es, dir0);
   }
   const float cos_e = delta_pos || infinite ? 1.0f : std::abs(dot(n_e, dir0));

@@ -5,8 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -16,6 +14,8 @@
 #include "abi/host_services.hpp"
 #include "scene/scene_parser.hpp"
 #include "world/world.hpp"
+
+#include "environment_map_fixture.hpp"
 
 namespace nimbus::testing {
 
@@ -106,23 +106,5 @@ lights:
   - { type: sun, direction: [0.3, 0.2, -1], irradiance: [5, 5, 5], angular_diameter: 20 }
   - { type: sun, direction: [-0.2, 0.4, -1], irradiance: [2, 3, 4] }
 )";
-
-// A 64 x 32 lat-long EXR in the temporary directory (removed by the caller): a ramp in azimuth with a
-// hot spot 10^4 above the rest, as a photographed sky with the sun in it.
-inline std::string write_environment_map(const std::string &name) {
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
-  const int w = 64, h = 32;
-  std::vector<float> px(size_t(w) * h * 3);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c)
-        px[(size_t(y) * w + x) * 3 + c] =
-            0.2f + 0.5f * float(x) / w + 0.1f * float(c) + (y == 9 && x / 2 == 20 ? 2e3f : 0);
-  auto out = OIIO::ImageOutput::create(path);
-  EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)) &&
-              out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
-  if (out) out->close();
-  return path;
-}
 
 }  // namespace nimbus::testing

@@ -3,12 +3,11 @@
 // evaluating the emission they hit (area lights, spheres seen from outside, disks, sun, environments).
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <filesystem>
 #include <random>
 
 #include <nimbus/cpp/sampling.hpp>
+#include "environment_map_fixture.hpp"
 #include "lights/light_set.hpp"
 #include "scene/scene_parser.hpp"
 
@@ -141,20 +140,8 @@ environment: { type: sky, turbidity: 3 }
 // A photographed-style map (nearest texel, no interpolation), rotated, with a hot spot 10^4 above the
 // rest: samples, pdfs and radiances agree with what escaping rays find.
 TEST(LightSampling, EnvironmentMapAgreesWithBruteForce) {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "nimbus_light_sampling_map.exr").string();
-  const int w = 64, h = 32;
-  std::vector<float> px(size_t(w) * h * 3);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c)
-        px[(size_t(y) * w + x) * 3 + c] =
-            0.2f + 0.5f * float(x) / w + 0.1f * float(c) + (y == 9 && x / 2 == 20 ? 2e3f : 0);
-  auto out = OIIO::ImageOutput::create(path);
-  ASSERT_TRUE(out);
-  ASSERT_TRUE(out->open(path, OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
-  out->close();
+  const std::string path = testing::write_environment_map("nimbus_light_sampling_map.exr");
+  ASSERT_FALSE(HasFailure()) << "could not write " << path;
   auto b = build("environment: { map: " + path + ", rotate: 30 }\n");
   ASSERT_EQ(b->lights.count(), 1u);
   check_light(*b, 0, {0, 0, 0}, 400000);

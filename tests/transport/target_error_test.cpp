@@ -27,9 +27,9 @@ objects:
 
 TEST(TargetError, AchievedErrorIsWithinFactorTwoOfTarget) {
   SceneRenderer r;
-  const auto ref = r.render(kScene, {"nimbus.pt", 8192, 99});
+  const auto ref = r.render(kScene, {.integrator = "nimbus.pt", .iterations = 8192, .seed = 99});
   for (const double target : {0.02, 0.005}) {
-    RenderRequest req{"nimbus.pt", 0, 7};
+    RenderRequest req{.integrator = "nimbus.pt", .iterations = 0, .seed = 7};
     req.target_error = target;
     const auto img = r.render(kScene, req);
     ASSERT_EQ(img.strings.at("nimbus:stopped_by"), "target_error");
@@ -48,7 +48,7 @@ TEST(TargetError, SceneKeyStopsAtTheTarget) {
   SceneRenderer r;
   std::string scene = kScene;
   scene.replace(scene.find("seed: 3"), 7, "seed: 3, target_error: 0.02");
-  RenderRequest req{"nimbus.pt", 0, 7};
+  RenderRequest req{.integrator = "nimbus.pt", .iterations = 0, .seed = 7};
   const auto img = r.render(scene, req);
   ASSERT_EQ(img.strings.at("nimbus:stopped_by"), "target_error");
   EXPECT_LT(img.numbers.at("nimbus:estimated_relmse"), 0.02);
@@ -57,7 +57,7 @@ TEST(TargetError, SceneKeyStopsAtTheTarget) {
 
 TEST(TargetError, NoHalfBuffersWithoutATarget) {
   SceneRenderer r;
-  const auto img = r.render(kScene, {"nimbus.pt", 4, 7});
+  const auto img = r.render(kScene, {.integrator = "nimbus.pt", .iterations = 4, .seed = 7});
   EXPECT_EQ(img.numbers.count("nimbus:estimated_relmse"), 0u);
   EXPECT_EQ(img.strings.at("nimbus:stopped_by"), "iterations");
 }

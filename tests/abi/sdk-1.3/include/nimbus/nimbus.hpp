@@ -353,18 +353,18 @@ struct Library {
     return &::nimbus::sdk::detail::Library<__VA_ARGS__>::entry();                                     \
   }
 
+// The descriptor's initialiser, its header chained to NEXT (internal to the two macros below).
+#define NIMBUS_DESCRIPTOR_VALUE_(ID, NAME, VENDOR, KIND, MAJOR, MINOR, PATCH, FEATURES, REQUIRED, NEXT) \
+  {                                                                                                     \
+    {sizeof(nimbus_descriptor_t), NIMBUS_S_TYPE_DESCRIPTOR, NEXT}, ID, NAME, VENDOR,                    \
+        {MAJOR, MINOR, PATCH, 0}, KIND, 0, FEATURES, REQUIRED                                           \
+  }
+
 // A static descriptor: NIMBUS_DESCRIPTOR(id, name, kind, major, minor, patch, features, required).
 #define NIMBUS_DESCRIPTOR(ID, NAME, VENDOR, KIND, MAJOR, MINOR, PATCH, FEATURES, REQUIRED)                  \
   static const nimbus_descriptor_t &descriptor() {                                                          \
-    static const nimbus_descriptor_t d = {{sizeof(nimbus_descriptor_t), NIMBUS_S_TYPE_DESCRIPTOR, nullptr}, \
-                                          ID,                                                               \
-                                          NAME,                                                             \
-                                          VENDOR,                                                           \
-                                          {MAJOR, MINOR, PATCH, 0},                                         \
-                                          KIND,                                                             \
-                                          0,                                                                \
-                                          FEATURES,                                                         \
-                                          REQUIRED};                                                        \
+    static const nimbus_descriptor_t d =                                                                    \
+        NIMBUS_DESCRIPTOR_VALUE_(ID, NAME, VENDOR, KIND, MAJOR, MINOR, PATCH, FEATURES, REQUIRED, nullptr); \
     return d;                                                                                               \
   }
 
@@ -378,15 +378,8 @@ struct Library {
         uint32_t(sizeof(OPTIONS) / sizeof(OPTIONS[0])),                                                   \
         0,                                                                                                \
         OPTIONS};                                                                                         \
-    static const nimbus_descriptor_t d = {{sizeof(nimbus_descriptor_t), NIMBUS_S_TYPE_DESCRIPTOR, &list}, \
-                                          ID,                                                             \
-                                          NAME,                                                           \
-                                          VENDOR,                                                         \
-                                          {MAJOR, MINOR, PATCH, 0},                                       \
-                                          KIND,                                                           \
-                                          0,                                                              \
-                                          FEATURES,                                                       \
-                                          REQUIRED};                                                      \
+    static const nimbus_descriptor_t d =                                                                  \
+        NIMBUS_DESCRIPTOR_VALUE_(ID, NAME, VENDOR, KIND, MAJOR, MINOR, PATCH, FEATURES, REQUIRED, &list); \
     return d;                                                                                             \
   }
 

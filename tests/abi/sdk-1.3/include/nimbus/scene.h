@@ -43,8 +43,8 @@ typedef struct nimbus_interaction {
 
 /* Since 1.3: the bounds of one object, as a box and an enclosing sphere (each may be the tighter one). */
 typedef struct nimbus_object_bounds {
-  float lo[3], hi[3];  /* axis-aligned box */
-  float center[3];     /* enclosing sphere */
+  float lo[3], hi[3]; /* axis-aligned box */
+  float center[3];    /* enclosing sphere */
   float radius;
 } nimbus_object_bounds_t;
 
