@@ -25,11 +25,20 @@ objects:
       transform: { rotate: [180, 0, 0], translate: [0, 0, 1.99] } }
 )";
 
+// A nimbus.pt render of `iterations` (0: the stopping rule decides) with `seed`.
+RenderRequest pt_request(uint64_t iterations, uint64_t seed) {
+  RenderRequest r;
+  r.integrator = "nimbus.pt";
+  r.iterations = iterations;
+  r.seed = seed;
+  return r;
+}
+
 TEST(TargetError, AchievedErrorIsWithinFactorTwoOfTarget) {
   SceneRenderer r;
-  const auto ref = r.render(kScene, {.integrator = "nimbus.pt", .iterations = 8192, .seed = 99});
+  const auto ref = r.render(kScene, pt_request(8192, 99));
   for (const double target : {0.02, 0.005}) {
-    RenderRequest req{.integrator = "nimbus.pt", .iterations = 0, .seed = 7};
+    RenderRequest req = pt_request(0, 7);
     req.target_error = target;
     const auto img = r.render(kScene, req);
     ASSERT_EQ(img.strings.at("nimbus:stopped_by"), "target_error");
@@ -48,7 +57,7 @@ TEST(TargetError, SceneKeyStopsAtTheTarget) {
   SceneRenderer r;
   std::string scene = kScene;
   scene.replace(scene.find("seed: 3"), 7, "seed: 3, target_error: 0.02");
-  RenderRequest req{.integrator = "nimbus.pt", .iterations = 0, .seed = 7};
+  RenderRequest req = pt_request(0, 7);
   const auto img = r.render(scene, req);
   ASSERT_EQ(img.strings.at("nimbus:stopped_by"), "target_error");
   EXPECT_LT(img.numbers.at("nimbus:estimated_relmse"), 0.02);
@@ -57,7 +66,7 @@ TEST(TargetError, SceneKeyStopsAtTheTarget) {
 
 TEST(TargetError, NoHalfBuffersWithoutATarget) {
   SceneRenderer r;
-  const auto img = r.render(kScene, {.integrator = "nimbus.pt", .iterations = 4, .seed = 7});
+  const auto img = r.render(kScene, pt_request(4, 7));
   EXPECT_EQ(img.numbers.count("nimbus:estimated_relmse"), 0u);
   EXPECT_EQ(img.strings.at("nimbus:stopped_by"), "iterations");
 }
