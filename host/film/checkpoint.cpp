@@ -12,69 +12,19 @@
 
 #include "core/checksum.hpp"
 #include "film/atomic_file.hpp"
+#include "film/checkpoint_io.hpp"
 
 namespace nimbus {
 namespace {
 
 constexpr std::array<char, 8> kMagic = {'N', 'I', 'M', 'B', 'U', 'S', 'C', 'K'};
-// Bounds that no real checkpoint reaches, checked before allocating, so a corrupted length field is
-// reported as such instead of attempting a huge allocation.
-constexpr uint32_t kMaxStringBytes = 1u << 20;
+// A bound no real checkpoint reaches, on the counts of elements and of plugin states.
 constexpr uint32_t kMaxElements = 1u << 16;
 
-struct FileCloser {
-  void operator()(std::FILE *f) const { std::fclose(f); }
-};
-using File = std::unique_ptr<std::FILE, FileCloser>;
-
-// ---- writing ---------------------------------------------------------------------------------------
-
-class Writer {
- public:
-  explicit Writer(std::FILE *f) : f_(f) {}
-
-  void bytes(const void *data, size_t n) {
-    sum_.update(static_cast<const uint8_t *>(data), n);
-    if (ok_ && std::fwrite(data, 1, n, f_) != n) ok_ = false;
-  }
-  void u32(uint32_t v) { fixed(v, 4); }
-  void u64(uint64_t v) { fixed(v, 8); }
-  void f64(double v) { fixed(std::bit_cast<uint64_t>(v), 8); }
-  void str(const std::string &s) {
-    u32(static_cast<uint32_t>(s.size()));
-    bytes(s.data(), s.size());
-  }
-  // Staged through a byte buffer so the encoding is little-endian whatever the host's byte order.
-  void doubles(std::span<const double> values) {
-    constexpr size_t kBatch = 8192;
-    std::vector<uint8_t> buffer(std::min(values.size(), kBatch) * 8);
-    for (size_t first = 0; first < values.size(); first += kBatch) {
-      const size_t n = std::min(kBatch, values.size() - first);
-      for (size_t i = 0; i < n; ++i) store_le(&buffer[i * 8], std::bit_cast<uint64_t>(values[first + i]), 8);
-      bytes(buffer.data(), n * 8);
-    }
-  }
-  // The checksum itself is not part of what it sums.
-  void finish() {
-    uint8_t b[8];
-    store_le(b, sum_.value(), 8);
-    if (ok_ && std::fwrite(b, 1, 8, f_) != 8) ok_ = false;
-  }
-  bool ok() const { return ok_; }
-
- private:
-  void fixed(uint64_t v, int n) {
-    uint8_t b[8];
-    store_le(b, v, n);
-    bytes(b, size_t(n));
-  }
-
-  std::FILE *f_;
-  Checksum sum_;
-  bool ok_ = true;
-};
-
-// ---- reading ---------------------------------------------------------------------------------------
+using checkpoint_io::File;
+using checkpoint_io::kMaxStringBytes;
+using checkpoint_io::Reader;
+using checkpoint_io::Writer;
 
 struct StoredElement {
   std::string name;
@@ -83,83 +33,11 @@ struct StoredElement {
 };
 
 struct Stored {
+  uint32_t version = 0;
   uint32_t width = 0, height = 0;
   uint64_t nonfinite = 0;
   CheckpointInfo info;
   std::vector<StoredElement> elements;
-};
-
-// Reads the file front to back, checking every read against the bytes left, so a truncated file is
-// reported with where it ends instead of as garbage.
-class Reader {
- public:
-  Reader(std::FILE *f, uint64_t size) : f_(f), size_(size) {}
-
-  // `what` names the field for the error message.
-  bool bytes(void *out, size_t n, const std::string &what) {
-    if (n > size_ - offset_) return truncated(what);
-    if (n > 0 && std::fread(out, 1, n, f_) != n) {
-      error_ = std::string("read error inside ") + what + ": " + std::strerror(errno);
-      return false;
-    }
-    sum_.update(static_cast<const uint8_t *>(out), n);
-    offset_ += n;
-    return true;
-  }
-  bool u32(uint32_t &v, const std::string &what) { return fixed(v, 4, what); }
-  bool u64(uint64_t &v, const std::string &what) { return fixed(v, 8, what); }
-  bool f64(double &v, const std::string &what) {
-    uint64_t bits = 0;
-    if (!fixed(bits, 8, what)) return false;
-    v = std::bit_cast<double>(bits);
-    return true;
-  }
-  bool str(std::string &s, const std::string &what) {
-    uint32_t n = 0;
-    if (!u32(n, what)) return false;
-    if (n > kMaxStringBytes) return corrupted(what + " claims " + std::to_string(n) + " bytes");
-    s.resize(n);
-    return bytes(s.data(), n, what);
-  }
-  bool doubles(std::vector<double> &out, uint64_t count, const std::string &what) {
-    if (count > (size_ - offset_) / 8) return truncated(what);
-    out.resize(count);
-    constexpr size_t kBatch = 8192;
-    std::vector<uint8_t> buffer(std::min<uint64_t>(count, kBatch) * 8);
-    for (size_t first = 0; first < count; first += kBatch) {
-      const size_t n = std::min<uint64_t>(kBatch, count - first);
-      if (!bytes(buffer.data(), n * 8, what)) return false;
-      for (size_t i = 0; i < n; ++i) out[first + i] = std::bit_cast<double>(load_le(&buffer[i * 8], 8));
-    }
-    return true;
-  }
-  bool corrupted(const std::string &why) {
-    error_ = "corrupted: " + why;
-    return false;
-  }
-
-  uint64_t checksum_so_far() const { return sum_.value(); }
-  uint64_t offset() const { return offset_; }
-  uint64_t size() const { return size_; }
-  const std::string &error() const { return error_; }
-
- private:
-  template <class T>
-  bool fixed(T &v, int n, const std::string &what) {
-    uint8_t b[8];
-    if (!bytes(b, size_t(n), what)) return false;
-    v = static_cast<T>(load_le(b, n));
-    return true;
-  }
-  bool truncated(const std::string &what) {
-    error_ = "truncated: the file ends at byte " + std::to_string(size_) + ", inside " + what;
-    return false;
-  }
-
-  std::FILE *f_;
-  uint64_t size_, offset_ = 0;
-  Checksum sum_;
-  std::string error_;
 };
 
 Error checkpoint_error(const std::string &path, const std::string &reason) {
@@ -188,7 +66,7 @@ Status read_header(const std::string &path, Reader &r, Stored &s) {
   if (magic != kMagic) return checkpoint_error(path, "not a Nimbus checkpoint (wrong magic number)");
   uint32_t version = 0;
   if (!r.u32(version, "the format version")) return checkpoint_error(path, r.error());
-  if (version != kCheckpointVersion) {
+  if (version != kCheckpointVersion && version != 1) {
     return checkpoint_error(path, "format version " + std::to_string(version) +
                                       " is not supported (this Nimbus reads version " +
                                       std::to_string(kCheckpointVersion) + ")");
@@ -198,6 +76,25 @@ Status read_header(const std::string &path, Reader &r, Stored &s) {
         r.u64(i.seed, "the header") && r.u64(s.nonfinite, "the header") && r.f64(i.seconds, "the header") &&
         r.str(i.integrator, "the integrator id") && r.str(i.fingerprint, "the fingerprint")))
     return checkpoint_error(path, r.error());
+  s.version = version;
+  return Ok{};
+}
+
+// The plugins' states (none in version 1).
+Status read_states(const std::string &path, Reader &r, Stored &s) {
+  if (s.version < 2) return Ok{};
+  uint32_t count = 0;
+  if (!r.u32(count, "the plugin state count")) return checkpoint_error(path, r.error());
+  if (count > kMaxElements)
+    return checkpoint_error(path, "corrupted: " + std::to_string(count) + " plugin states");
+  for (uint32_t k = 0; k < count; ++k) {
+    PluginState st;
+    const std::string which = "plugin state #" + std::to_string(k + 1);
+    if (!r.str(st.plugin, "the plugin id of " + which) ||
+        !r.blob(st.bytes, "the state of plugin '" + st.plugin + "'"))
+      return checkpoint_error(path, r.error());
+    s.info.states.push_back(std::move(st));
+  }
   return Ok{};
 }
 
@@ -226,6 +123,7 @@ Expected<Stored> read_all(const std::string &path) {
       return checkpoint_error(path, r.error());
     s.elements.push_back(std::move(e));
   }
+  if (Status st = read_states(path, r, s); !st) return st.error();
   const uint64_t expected = r.checksum_so_far();
   uint8_t b[8];
   // The stored checksum is read raw: Reader's running sum would include it.
@@ -290,7 +188,8 @@ std::string element_list(const std::vector<std::pair<std::string, uint32_t>> &el
 Status write_checkpoint(const Film &film, const std::string &path, const CheckpointInfo &info) {
   if (film.has_pending_splats())
     return checkpoint_error(path, "the film has splats not merged into its sums");
-  if (info.integrator.size() > kMaxStringBytes || info.fingerprint.size() > kMaxStringBytes)
+  if (info.integrator.size() > kMaxStringBytes || info.fingerprint.size() > kMaxStringBytes ||
+      info.states.size() > kMaxElements)
     return checkpoint_error(path, "the integrator id or fingerprint is too long");
   return write_atomically(path, [&](const std::string &tmp) -> Status {
     File f(std::fopen(tmp.c_str(), "wb"));
@@ -312,6 +211,11 @@ Status write_checkpoint(const Film &film, const std::string &path, const Checkpo
       w.str(film.element_name(id));
       w.u32(film.element_channels(id));
       w.doubles(film.sums(id));
+    }
+    w.u32(static_cast<uint32_t>(info.states.size()));
+    for (const PluginState &st : info.states) {
+      w.str(st.plugin);
+      w.blob(st.bytes);
     }
     w.finish();
     if (!w.ok()) return Error{std::string("write error: ") + std::strerror(errno)};
@@ -366,6 +270,7 @@ Status read_checkpoint(Film &film, const std::string &path, CheckpointInfo &info
   film.set_nonfinite_count(s.nonfinite);
   info.iterations = s.info.iterations;
   info.seconds = s.info.seconds;
+  info.states = std::move(s.info.states);
   return Ok{};
 }
 

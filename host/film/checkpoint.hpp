@@ -1,7 +1,8 @@
 // Checkpoints: the film's running double sums saved bit for bit, so an interrupted (or finished) render
 // can be continued and end exactly where an uninterrupted render of the same total would.
 //
-// File format, version 1. Every integer is little-endian; doubles are IEEE-754 binary64, little-endian.
+// File format, version 2 (version 1, without plugin states, is still read). Every integer is little-endian;
+// doubles are IEEE-754 binary64, little-endian.
 //   magic        8 bytes   "NIMBUSCK"
 //   version      u32       kCheckpointVersion
 //   width        u32
@@ -14,19 +15,28 @@
 //   fingerprint  string
 //   elements     u32       count, then per active element (film order, beauty first):
 //                            name string, channels u32, width * height * channels f64 sums
+//   states       u32       count, then per plugin that saved its learnt state (nimbus/render_state.h):
+//                            plugin id string, u64 byte count, the plugin's bytes
 //   checksum     u64       of every byte before it (core/checksum.hpp), so corruption is detected
 //                          rather than resumed from
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/expected.hpp"
 #include "film/film.hpp"
 
 namespace nimbus {
 
-inline constexpr uint32_t kCheckpointVersion = 1;
+inline constexpr uint32_t kCheckpointVersion = 2;
+
+// What one plugin saved of its learnt state (nimbus.iface.render-state), in its own format.
+struct PluginState {
+  std::string plugin;  // id
+  std::vector<uint8_t> bytes;
+};
 
 struct CheckpointInfo {
   // Completed iterations. Written from the film (this field is ignored by write_checkpoint); filled in by
@@ -38,6 +48,8 @@ struct CheckpointInfo {
   std::string fingerprint;
   std::string integrator;  // plugin id
   double seconds = 0;      // render time the sums took, over all sessions
+  // Written as given; filled in by read_checkpoint (empty from a version 1 file).
+  std::vector<PluginState> states;
 };
 
 // Writes every active element's sums atomically (temporary file, fsync, rename: see atomic_file.hpp), so a

@@ -107,6 +107,9 @@ LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &p, Ru
   }
   out.seconds = seconds_since(t0);
   out.cancelled = cancel.load();
+  // The last checkpoint, while the plugins still hold the state of the last iteration. After a plugin
+  // failure the sums hold a partial iteration, so the last periodic checkpoint is kept instead.
+  if (out.failure == NIMBUS_OK) out.checkpointed = checkpoint.save_if_behind(film, out.done);
   p.it->end_render(p.integrator.get(),
                    out.failure != NIMBUS_OK ? out.failure : (out.cancelled ? NIMBUS_E_CANCELLED : NIMBUS_OK));
   return out;

@@ -1,7 +1,7 @@
 // The progressive loop: iteration after iteration (begin_iteration, every tile in parallel, splats merged,
 // end_iteration) until the job's stopping rules, cancellation or a plugin failure; checkpoints between
-// iterations and progress after each. Whatever ends it, end_render is called and the film holds only
-// complete iterations, except after a plugin failure.
+// iterations and progress after each, and a last checkpoint when it stops. Whatever ends it, end_render is
+// called and the film holds only complete iterations, except after a plugin failure.
 #pragma once
 
 #include <chrono>
@@ -27,7 +27,8 @@ struct LoopOutcome {
   bool reached_target = false;
   double estimated_error = -1;  // the last estimate with an error target
   nimbus_status_t failure = NIMBUS_OK;
-  std::string failure_hook;  // the integrator hook that failed
+  std::string failure_hook;    // the integrator hook that failed
+  Status checkpointed = Ok{};  // the final checkpoint's save
 
   // "error", "cancel", "target_error", "iterations" or "time" (the EXR's nimbus:stopped_by).
   std::string stopped_by(const StopRules &stop) const;

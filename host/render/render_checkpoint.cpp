@@ -38,6 +38,11 @@ void RenderCheckpoint::start(uint64_t done, Clock::time_point t0) {
 
 Status RenderCheckpoint::save(const Film &film, uint64_t done) {
   info_.seconds = previous_seconds_ + session_seconds();
+  if (states_) {
+    auto states = states_->save(done);
+    if (!states) return Error{"checkpoint '" + path_ + "' not written: " + states.error().message};
+    info_.states = std::move(states.value());
+  }
   Status s = write_checkpoint(film, path_, info_);
   if (s) saved_ = done, saved_path_ = path_;
   return s;

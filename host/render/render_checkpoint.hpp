@@ -1,6 +1,7 @@
 // The checkpoint of one render (film/checkpoint.hpp has the file): restored before the first iteration
 // when resuming, else an existing one is warned about before it is replaced; saved between iterations
-// every job.checkpoint_interval_seconds and once more when the loop stops.
+// every job.checkpoint_interval_seconds and once more when the loop stops, each time with the plugins'
+// learnt state (plugin_states.hpp).
 #pragma once
 
 #include <chrono>
@@ -10,6 +11,7 @@
 #include "core/expected.hpp"
 #include "film/checkpoint.hpp"
 #include "film/film.hpp"
+#include "render/plugin_states.hpp"
 #include "render/render_job.hpp"
 #include "render/render_session.hpp"
 
@@ -26,6 +28,13 @@ class RenderCheckpoint {
   // Resuming: the film's sums, iteration count and non-finite count from the file (or why they cannot
   // be). Otherwise a warning through `warn` (if any) when a checkpoint is about to be replaced.
   Status restore_or_warn(Film &film, const MessageFn &warn);
+
+  // The plugins whose learnt state goes into every save (borrowed; outlives this). Without, none does.
+  void keep_plugin_states(const PluginStates *states) { states_ = states; }
+  // Resuming, after begin_render: hands the plugins the states the restored checkpoint holds.
+  void restore_plugin_states(const MessageFn &warn) const {
+    if (resume_ && states_) states_->restore(info_.states, info_.iterations, warn);
+  }
 
   // This run's iterations (since it started or resumed) start at `t0`, with `done` iterations in the film.
   void start(uint64_t done, Clock::time_point t0);
@@ -53,6 +62,7 @@ class RenderCheckpoint {
   Clock::time_point t0_, last_save_;
   uint64_t saved_ = 0;  // iterations the checkpoint on disk holds
   std::string saved_path_;
+  const PluginStates *states_ = nullptr;
 };
 
 }  // namespace nimbus

@@ -66,6 +66,8 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
 
   // Restore the sums before the first iteration, or warn before replacing someone's work.
   RenderCheckpoint checkpoint(job, plugins.integrator.id(), plugins.sampler.id(), plugins.options);
+  const PluginStates states(plugins);
+  checkpoint.keep_plugin_states(&states);
   if (Status s = checkpoint.restore_or_warn(film, message); !s) return s.error();
   if (job.stop.target_error > 0)
     run.error_estimate = std::make_unique<ErrorEstimate>(job.width, job.height, run.worker_count);
@@ -78,14 +80,14 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   if (nimbus_status_t s = plugins.it->begin_render(plugins.integrator.get(), &info); s != NIMBUS_OK)
     return Error{"integrator '" + plugins.integrator.id() +
                  "' failed to begin the render: " + status_text(s)};
+  checkpoint.restore_plugin_states(message);
 
   const LoopOutcome loop = run_progressive_loop(
       job, plugins, run, make_tiles(job.width, job.height, job.region), checkpoint, progress, message);
 
-  // Write what we have, whatever ended the loop. The checkpoint goes first, so that an image write that
-  // fails still leaves a way to recover the render; after a plugin failure the sums hold a partial
-  // iteration, so the last periodic checkpoint is kept instead.
-  const Status checkpointed = loop.failure == NIMBUS_OK ? checkpoint.save_if_behind(film, loop.done) : Ok{};
+  // Write what we have, whatever ended the loop. The loop saved the checkpoint first, so that an image
+  // write that fails still leaves a way to recover the render.
+  const Status &checkpointed = loop.checkpointed;
   RenderResult result;
   result.iterations = loop.done;
   result.seconds = loop.seconds;

@@ -9,8 +9,10 @@
 
 #include <chrono>
 #include <cstring>
+#include <utility>
 
 #include <nimbus/cpp/camera_path.hpp>
+#include <nimbus/cpp/render_state.hpp>
 
 #include "caustics_record.hpp"
 #include "emitters.hpp"
@@ -34,6 +36,11 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
  public:
   NIMBUS_DESCRIPTOR_WITH_OPTIONS("nimbus.caustics", "Caustics solver (PT + selective photon merging, MIS)",
                                  "Nimbus", NIMBUS_KIND_INTEGRATOR, 1, 0, 0, kFeatures, kRequired, kOptions)
+
+  const void *interface(const char *id, uint32_t rev) override {
+    if (const void *t = sdk::render_state_interface<CausticsSolver>(id, rev)) return t;
+    return Base::interface(id, rev);
+  }
 
   nimbus_status_t init() override {
     if (nimbus_status_t s = Base::init(); s != NIMBUS_OK) return s;
@@ -87,16 +94,33 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     schedule_ = PhotonSchedule(cfg);
     useful_.reset(armed_ ? size_t(width_) * height_ : 0);
     pass_.release();
-    map_active_ = false;
+    map_active_ = rebuild_map_ = false;
+    map_request_ = 0, map_reach_ = 0, photon_work_ = 0;
     stats_ = {};
     return NIMBUS_OK;
   }
 
   nimbus_status_t begin_iteration(uint64_t iteration) override {
     if (!armed_) return NIMBUS_OK;
-    if (const uint64_t paths = schedule_.plan(iteration); paths > 0) {
+    const uint64_t paths = schedule_.plan(iteration);
+    if (paths == 0 && rebuild_map_) {
+      // A resumed render: the map of the last pass, from the same arguments (photon_pass is deterministic).
+      PhotonPass::Result result;
+      if (nimbus_status_t s = photon_pass(schedule_.passes(), map_request_, map_reach_, result);
+          s != NIMBUS_OK)
+        return s;
+    }
+    rebuild_map_ = false;
+    if (paths > 0) {
       const auto t0 = std::chrono::steady_clock::now();
-      if (nimbus_status_t s = photon_pass(paths); s != NIMBUS_OK) return s;
+      map_request_ = paths, map_reach_ = PhotonPass::filter_reach(lookup_radii_);
+      PhotonPass::Result result;
+      if (nimbus_status_t s = photon_pass(schedule_.passes() + 1, paths, map_reach_, result); s != NIMBUS_OK)
+        return s;
+      stats_.photon_paths += result.paths;
+      stats_.photons += pass_.map().size();
+      stats_.photon_bytes += pass_.map().bytes();
+      ++stats_.passes;
       useful_.map_changed();
       stats_.photon_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       schedule_.pass_done(iteration, merge_.map_paths, pass_.map().size());
@@ -172,14 +196,55 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     pass_.release();
   }
 
+  // The render's learnt state (nimbus/render_state.h): the schedule, the per-pixel statistics, what the
+  // current map was traced with (it is traced again on resume rather than stored) and the statistics.
+  nimbus_status_t save_state(uint64_t, sdk::StateWriter &w) {
+    w.put(kStateVersion), w.put(uint8_t(armed_));
+    if (!armed_) return NIMBUS_OK;
+    schedule_.save(w);
+    w.put(photon_work_), w.put(map_request_), w.put(map_reach_);
+    RadiusHistogram radii;
+    for (RadiusHistogram &r : lookup_radii_) radii.add(r);
+    w.put_array(std::as_const(radii).counts());
+    useful_.save(w);
+    w.put(stats_);
+    return NIMBUS_OK;
+  }
+  nimbus_status_t restore_state(uint64_t, sdk::StateReader &r) {
+    uint32_t version = 0;
+    uint8_t armed = 0;
+    if (!r.get(version) || version != kStateVersion) return NIMBUS_E_VERSION;
+    if (!r.get(armed) || bool(armed) != armed_) return NIMBUS_E_INVALID_ARG;
+    if (!armed_) return r.done() ? NIMBUS_OK : NIMBUS_E_INVALID_ARG;
+    // Read into copies; the solver changes only once everything has been read.
+    PhotonSchedule schedule;
+    double work = 0;
+    uint64_t request = 0;
+    float reach = 0;
+    RadiusHistogram radii;
+    UsefulPixels useful = useful_;
+    Stats stats;
+    if (!(schedule.restore(r) && r.get(work) && r.get(request) && r.get(reach) &&
+          r.get_array(radii.counts()) && useful.restore(r) && r.get(stats) && r.done()))
+      return NIMBUS_E_INVALID_ARG;
+    schedule_ = schedule, photon_work_ = work, map_request_ = request, map_reach_ = reach;
+    bool first = true;
+    for (RadiusHistogram &h : lookup_radii_) {
+      h.clear();
+      if (first) h.add(radii), first = false;
+    }
+    useful_ = std::move(useful), stats_ = stats;
+    rebuild_map_ = schedule_.map_active() && schedule_.passes() > 0;
+    return NIMBUS_OK;
+  }
+
  private:
-  nimbus_status_t photon_pass(uint64_t paths) {
+  // Photon pass `pass` of `paths` paths: the map and what camera passes read with it.
+  nimbus_status_t photon_pass(uint32_t pass, uint64_t paths, float filter_reach, PhotonPass::Result &result) {
     const nimbus_host_t *h = host().get();
-    const uint32_t pass = schedule_.passes() + 1;
     if (progress_) progress_->report(h, 0, paths, "photons");
     const PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth());
-    PhotonPass::Result result;
-    if (nimbus_status_t s = pass_.run(tracer, tasks_, h, pass, paths, lookup_radii_, result); s != NIMBUS_OK)
+    if (nimbus_status_t s = pass_.run(tracer, tasks_, h, pass, paths, filter_reach, result); s != NIMBUS_OK)
       return s;
     if (progress_) progress_->report(h, paths, paths, "photons");
     merge_ = {h,
@@ -192,11 +257,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
               result.paths,
               merge_.radius_per_length,
               scene_radius_};
-    stats_.photon_paths += result.paths;
     photon_work_ = result.paths > 0 ? double(result.work) / double(result.paths) : 0.0;
-    stats_.photons += pass_.map().size();
-    stats_.photon_bytes += pass_.map().bytes();
-    ++stats_.passes;
     return NIMBUS_OK;
   }
 
@@ -217,9 +278,14 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   PhotonSchedule schedule_;
   double photon_work_ = 0;  // work units per photon path of the last pass
   PhotonPass pass_;
-  MergeContext merge_;  // what camera passes read while the map is active
+  uint64_t map_request_ = 0;  // photon paths asked of the current map's pass
+  float map_reach_ = 0;       // and its occupancy filter's reach
+  bool rebuild_map_ = false;  // resumed with a map active: trace it again before the next camera pass
+  MergeContext merge_;        // what camera passes read while the map is active
   bool map_active_ = false;
   UsefulPixels useful_;
+  // The format of save_state's bytes.
+  static constexpr uint32_t kStateVersion = 1;
   struct Stats {
     uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
     uint64_t mis_clamped = 0;

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <nimbus/cpp/math.hpp>
@@ -136,6 +137,9 @@ class RadiusHistogram {
     for (int i = 0; i < kBins; ++i) counts_[i] += o.counts_[i];
   }
   void clear() { counts_.fill(0); }
+  // The counts themselves, for saving and restoring a render's state.
+  std::span<uint64_t> counts() { return counts_; }
+  std::span<const uint64_t> counts() const { return counts_; }
   uint64_t total() const {
     uint64_t t = 0;
     for (uint64_t c : counts_) t += c;

@@ -24,8 +24,8 @@ constexpr double kFilterShare = 0.95;
 }  // namespace
 
 nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks,
-                                const nimbus_host_t *h, uint32_t pass, uint64_t paths,
-                                sdk::PerWorker<RadiusHistogram> &lookup_radii, Result &result) {
+                                const nimbus_host_t *h, uint32_t pass, uint64_t paths, float filter_reach,
+                                Result &result) {
   const uint64_t task_count = (paths + kPhotonPathsPerTask - 1) / kPhotonPathsPerTask;
   chunks_.resize(task_count);
   for (PhotonChunk &c : chunks_) c.reset();
@@ -61,12 +61,14 @@ nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_ta
     std::copy(chunks_[i].photons.begin(), chunks_[i].photons.end(), photons_.begin() + ptrdiff_t(offset[i]));
   });
   result.paths = done;
-  // The filter's reach: the radius 95 % of the lookups since the last pass stayed within (radii only
-  // shrink from pass to pass), so nearly every lookup can ask it first.
+  map_.build(photons_, parallel, filter_reach);
+  return NIMBUS_OK;
+}
+
+float PhotonPass::filter_reach(sdk::PerWorker<RadiusHistogram> &lookup_radii) {
   RadiusHistogram radii;
   for (RadiusHistogram &r : lookup_radii) radii.add(r), r.clear();
-  map_.build(photons_, parallel, radii.quantile(kFilterShare));
-  return NIMBUS_OK;
+  return radii.quantile(kFilterShare);
 }
 
 void PhotonPass::release() {

@@ -32,11 +32,15 @@ class PhotonPass {
     uint64_t work = 0;   // budget work units (schedule.hpp)
   };
 
-  // [main-thread] Traces `paths` photon paths of pass `pass` (1-based) and rebuilds the map. The lookup
-  // radii since the last pass (emptied here) set the reach of the map's occupancy filter.
+  // [main-thread] Traces `paths` photon paths of pass `pass` (1-based) and rebuilds the map, with an
+  // occupancy filter of reach `filter_reach` (0: none). The same arguments give the same map.
   nimbus_status_t run(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h,
-                      uint32_t pass, uint64_t paths, sdk::PerWorker<RadiusHistogram> &lookup_radii,
-                      Result &result);
+                      uint32_t pass, uint64_t paths, float filter_reach, Result &result);
+
+  // [main-thread] The occupancy filter's reach for the next map: the radius 95 % of the lookups since the
+  // last pass stayed within (radii only shrink from pass to pass), so nearly every lookup can ask the
+  // filter first. Empties the histograms.
+  static float filter_reach(sdk::PerWorker<RadiusHistogram> &lookup_radii);
 
   const PhotonKdTree &map() const { return map_; }
   // [main-thread] Frees the map and the buffers (end of a render).

@@ -133,6 +133,25 @@ class PhotonSchedule {
   uint64_t iterations_per_map() const { return serves_; }
   const ScheduleConfig &config() const { return cfg_; }
 
+  // The whole state, for a resumed render (sdk::StateWriter and sdk::StateReader); restore changes
+  // nothing unless it reads all of it.
+  template <class Writer>
+  void save(Writer &w) const {
+    w.put(cfg_), w.put(next_pass_), w.put(serves_), w.put(passes_), w.put(idle_), w.put(rho_);
+    w.put(map_rho_), w.put(uint8_t(measured_)), w.put(uint8_t(active_));
+  }
+  template <class Reader>
+  bool restore(Reader &r) {
+    PhotonSchedule s;
+    uint8_t measured = 0, active = 0;
+    if (!(r.get(s.cfg_) && r.get(s.next_pass_) && r.get(s.serves_) && r.get(s.passes_) && r.get(s.idle_) &&
+          r.get(s.rho_) && r.get(s.map_rho_) && r.get(measured) && r.get(active)))
+      return false;
+    s.measured_ = measured != 0, s.active_ = active != 0;
+    *this = s;
+    return true;
+  }
+
  private:
   // The next pass comes after 2^b iterations without photons, starting at `first_idle`.
   void back_off(uint64_t first_idle) {

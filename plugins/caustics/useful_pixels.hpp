@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <nimbus/cpp/math.hpp>
@@ -35,6 +36,20 @@ class UsefulPixels {
   // [main-thread] Zeroes the sums of a width x height image (0: none kept).
   void reset(size_t pixels) { sums_.assign(pixels, Sums{}); }
 
+  // [main-thread] Every pixel's sums, for a resumed render; restore changes nothing unless it reads the
+  // sums of exactly this many pixels.
+  template <class Writer>
+  void save(Writer &w) const {
+    w.put_array(std::span<const Sums>(sums_));
+  }
+  template <class Reader>
+  bool restore(Reader &r) {
+    std::vector<Sums> sums;
+    if (!r.get_array(sums, sums_.size())) return false;
+    sums_ = std::move(sums);
+    return true;
+  }
+
   // [render-thread] One sample of pixel i (each pixel belongs to one tile, so no two threads meet).
   void add(size_t i, const Rgb &beauty, const Rgb &merged) {
     const float b = luminance(beauty), m = luminance(merged), c = b - m;
@@ -58,9 +73,9 @@ class UsefulPixels {
         const float d = std::max(0.0f, 0.5f * (mean - s.previous) * (mean - s.previous) - within / s.map_n);
         s.between = s.has_between ? kWindowDecay * s.between + (1 - kWindowDecay) * d : d;
         s.within = s.has_between ? kWindowDecay * s.within + (1 - kWindowDecay) * within : within;
-        s.has_between = true;
+        s.has_between = 1;
       }
-      s.previous = mean, s.has_previous = true;
+      s.previous = mean, s.has_previous = 1;
       s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0;
     }
   }
@@ -91,13 +106,15 @@ class UsefulPixels {
   }
 
  private:
+  // No padding bytes (the flags' are explicit), so that a saved state is the same bytes every time.
   struct Sums {
     float n = 0, total = 0, merge = 0, camera2 = 0;  // the window's samples
     float map_n = 0, map_merge = 0, map_merge2 = 0;  // the current map's samples
     float previous = 0;                              // the previous map's merge mean
     float between = 0, within = 0;                   // photon variance of a map; merges' sample variance
-    bool has_previous = false, has_between = false;
+    uint8_t has_previous = 0, has_between = 0, unused[2] = {0, 0};
   };
+  static_assert(sizeof(Sums) == 11 * sizeof(float));
   std::vector<Sums> sums_;
 };
 

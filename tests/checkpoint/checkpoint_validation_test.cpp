@@ -100,7 +100,7 @@ TEST_F(CheckpointValidation, WrongMagic) {
 }
 
 TEST_F(CheckpointValidation, UnsupportedVersion) {
-  expect_refused(variant("v2.ckpt", [](std::string &b) { b[8] = 2; }), "format version 2 is not supported");
+  expect_refused(variant("v3.ckpt", [](std::string &b) { b[8] = 3; }), "format version 3 is not supported");
 }
 
 TEST_F(CheckpointValidation, AnyFlippedBitInTheDataIsCaught) {

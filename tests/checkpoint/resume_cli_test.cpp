@@ -104,6 +104,50 @@ TEST(Resume, SplattingIntegratorResumesExactly) {
   expect_identical(full, part);
 }
 
+TEST(Resume, CausticsSolverResumesExactlyWithItsLearntState) {
+  // The caustics solver learns as it renders (photon budget, pass schedule, per-pixel variances), so a
+  // resumed render equals an uninterrupted one only with that state restored and the current photon
+  // map traced again. The box at 192x144 makes a photon pass every few iterations; 9 falls inside a map's
+  // service, and the resumed part runs on one thread.
+  TestDir dir;
+  std::string text = read_bytes(scene("box.yaml"));
+  const auto replace = [&](const std::string &from, const std::string &to) {
+    const size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace("resolution: [64, 48]", "resolution: [192, 144]");
+  replace("integrator: nimbus.pt", "integrator: nimbus.caustics");
+  const std::string box = dir.file("caustic-box.yaml");
+  write_bytes(box, text);
+  const std::string full = dir.file("full.exr"), part = dir.file("part.exr");
+  auto render = [&](const std::string &out, const std::string &iterations, const std::string &threads,
+                    std::vector<std::string> extra) {
+    std::vector<std::string> args = {
+        "render",       box,        "-o",         out,        "--seed", "11", "--threads", threads,
+        "--iterations", iterations, "--elements", "caustics", "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_nimbus(args, dir);
+  };
+  ProcessResult r = render(full, "24", "2", {});
+  ASSERT_TRUE(exited_with(r, 0)) << r.describe();
+  r = render(part, "9", "2", {});
+  ASSERT_TRUE(exited_with(r, 0)) << r.describe();
+  r = render(part, "24", "1", {"--resume"});
+  ASSERT_TRUE(exited_with(r, 0)) << r.describe();
+  EXPECT_FALSE(contains(r.err, "warning")) << r.err;
+  expect_identical(full, part);
+  // More than one photon pass, and the same ones.
+  const auto a = read_exr(full), b = read_exr(part);
+  ASSERT_TRUE(a && b);
+  const auto passes = meta_number(*a, "nimbus:stat:caustics_photon_passes");
+  ASSERT_TRUE(passes);
+  EXPECT_GE(*passes, 3.0);
+  EXPECT_EQ(meta_number(*b, "nimbus:stat:caustics_photon_passes"), passes);
+  EXPECT_EQ(meta_number(*b, "nimbus:stat:caustics_photon_paths"),
+            meta_number(*a, "nimbus:stat:caustics_photon_paths"));
+}
+
 // Starts a render that would take minutes; returns once it has reported an iteration (and, if `file` is
 // given, once that file exists).
 std::unique_ptr<Process> start_long_render(const TestDir &dir, const std::vector<std::string> &args,

@@ -11,6 +11,7 @@
 #include "light_sampler.h"
 #include "lights.h"
 #include "plugin.h"
+#include "render_state.h"
 #include "rng.h"
 #include "scene.h"
 #include "status.h"
