@@ -4,23 +4,36 @@ compares every image with a reference, and writes a CSV and a log-log plot of re
 
     bench/error_vs_time.py scenes/caustics/sphere-area.yaml --integrators pt,caustics \
         --times 5,10,20,40,80 [--reference REF.exr] [--reference-integrator pt --reference-time 1200] \
-        [--seeds 3] [--out docs/error-vs-time] [--nimbus build/bin/nimbus]
+        [--covered-only] [--crop X0,Y0,X1,Y1] [--seeds 3] [--out docs/error-vs-time] [--nimbus build/bin/nimbus]
 
-Without --reference, a reference is rendered first with --reference-integrator for --reference-time
-seconds (and kept next to the CSV, with the command that made it). It prints, per integrator and time,
-the median relMSE over seeds, efficiency = 1 / (relMSE x seconds), and the ratio of each integrator's
-efficiency to the path tracer's measured in the same run. Uses Debian's python3 and matplotlib; not part of
+Without --reference, the reference is rendered first, as two independent halves (seeds 1000 and 1001),
+each with --reference-integrator for --reference-time seconds, and kept next to the CSV with the commands
+that made them. The reference is their mean; half the squared difference of the halves estimates the
+reference's own variance, which every relMSE against it contains, and the corrected relMSE (relMSE minus
+that variance, an unbiased estimate of the error against the exact image) is reported beside it; the
+efficiency ratios use the corrected figure. The integrators alternate at every
+(time, seed), so machine load falls on both sides alike. relMSE is nimbus compare's: mean over the
+channels of the pixels finite in both of (t - r)^2 / (r^2 + 0.01), over the whole image, the --crop
+rectangle, or with --covered-only the pixels the reference covers (non-zero, with every pixel within 2
+of them non-zero, so that silhouettes of glass and mirrors are left out): a light tracer (nimbus.lt)
+renders every pixel whose camera ray first meets a non-specular surface and leaves those behind glass or
+in mirrors black, so it is an independent reference for those pixels in scenes that path tracing cannot
+converge (delta lights behind specular surfaces). It prints, per integrator and time, the median relMSE
+over seeds, efficiency = 1 / (relMSE x seconds), and the ratio of each integrator's efficiency to the path
+tracer's measured in the same run. An entry of --integrators may name another build as
+LABEL=INTEGRATOR@NIMBUS (e.g. old=caustics@/path/to/old/build/bin/nimbus), to compare two versions. Uses Debian's python3 and matplotlib; not part of
 CI (machines are shared and noisy: read the ratios, not the absolute figures).
 """
 import argparse
 import csv
-import json
 import os
 import statistics
 import subprocess
 import time
 
-from nimbus_tools import remove_render_outputs, run
+import numpy as np
+
+from nimbus_tools import read_exr, remove_render_outputs, run
 
 
 def render(nimbus, scene, integrator, seconds, seed, out):
@@ -31,8 +44,35 @@ def render(nimbus, scene, integrator, seconds, seed, out):
     return time.monotonic() - t0, cmd
 
 
-def compare(nimbus, test, ref):
-    return json.loads(run([nimbus, "compare", test, ref, "--json"]))
+def beauty(path):
+    """The beauty layer (the file's first part, channels R, G, B) as float64 rows x columns x 3."""
+    part = read_exr(path)[0]
+    return np.stack([part.values(c).astype(np.float64) for c in "RGB"], axis=-1)
+
+
+def relmse(test, ref, mask):
+    """nimbus compare's relMSE over the pixels of `mask` finite in both images."""
+    keep = mask & np.isfinite(test).all(axis=-1) & np.isfinite(ref).all(axis=-1)
+    return float(((test[keep] - ref[keep]) ** 2 / (ref[keep] ** 2 + 0.01)).mean())
+
+
+def region_mask(ref, covered_only, crop):
+    mask = np.ones(ref.shape[:2], dtype=bool)
+    if covered_only:
+        # A pixel counts when its whole neighbourhood is covered: a pixel on a glass or mirror silhouette
+        # is partly light the light tracer cannot render, so its reference is too dark there.
+        covered = (ref > 0).any(axis=-1)
+        padded = np.pad(covered, 2, constant_values=False)
+        h, w = covered.shape
+        for dy in range(5):
+            for dx in range(5):
+                mask &= padded[dy:dy + h, dx:dx + w]
+    if crop:
+        x0, y0, x1, y1 = crop
+        box = np.zeros_like(mask)
+        box[y0:y1, x0:x1] = True
+        mask &= box
+    return mask
 
 
 def main():
@@ -42,40 +82,68 @@ def main():
     ap.add_argument("--times", default="5,10,20,40,80")
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--reference")
+    ap.add_argument("--reference2", help="a second, independent reference render (another seed)")
     ap.add_argument("--reference-integrator", default="pt")
     ap.add_argument("--reference-time", type=float, default=1200)
+    ap.add_argument("--covered-only", action="store_true", help="only the pixels the reference covers")
+    ap.add_argument("--crop", help="X0,Y0,X1,Y1: only this pixel rectangle")
     ap.add_argument("--out", default="docs/error-vs-time")
     ap.add_argument("--nimbus", default="build/bin/nimbus")
     args = ap.parse_args()
 
     integrators = [s.strip() for s in args.integrators.split(",") if s.strip()]
+    # LABEL=INTEGRATOR@NIMBUS, or INTEGRATOR alone (labelled by itself, rendered by --nimbus).
+    how = {}
+    for entry in integrators:
+        label, _, spec = entry.rpartition("=") if "=" in entry else (entry, "", entry)
+        integ, _, binary = spec.partition("@")
+        how[label or integ] = (integ, binary or args.nimbus)
+    integrators = list(how)
     times = [float(t) for t in args.times.split(",")]
+    crop = [int(v) for v in args.crop.split(",")] if args.crop else None
     os.makedirs(args.out, exist_ok=True)
     rows = []
     for scene in args.scenes:
         name = os.path.splitext(os.path.basename(scene))[0]
-        ref = args.reference
-        if not ref:
-            ref = os.path.join(args.out, f"{name}-reference.exr")
-            if not os.path.exists(ref):
-                secs, cmd = render(args.nimbus, scene, args.reference_integrator, args.reference_time, 1000, ref)
+        refs = [r for r in (args.reference, args.reference2) if r]
+        if not refs:
+            for k, seed in enumerate((1000, 1001)):
+                ref = os.path.join(args.out, f"{name}-reference{'' if k == 0 else '-2'}.exr")
+                refs.append(ref)
+                if os.path.exists(ref):
+                    continue
+                secs, cmd = render(args.nimbus, scene, args.reference_integrator, args.reference_time, seed, ref)
                 commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                                         text=True).stdout.strip() or "unknown"
                 with open(ref + ".txt", "w") as f:
                     f.write(f"command: {' '.join(cmd)}\nwall seconds: {secs:.1f}\n"
                             f"commit: {commit}; used by error-vs-time.csv\n")
+        halves = [beauty(r) for r in refs]
+        ref_image = sum(halves) / len(halves)
+        mask = region_mask(ref_image, args.covered_only, crop)
+        ref_var = 0.0
+        if len(halves) == 2:
+            d = halves[0] - halves[1]
+            keep = mask & np.isfinite(d).all(axis=-1)
+            ref_var = float((d[keep] ** 2 / (ref_image[keep] ** 2 + 0.01)).mean()) / 4
+        errs = {(integ, t): [] for integ in integrators for t in times}
+        for t in times:
+            for s in range(args.seeds):
+                for integ in integrators:
+                    out = os.path.join(args.out, f"{name}-{integ}-{t:g}s-seed{s + 1}.exr")
+                    render(how[integ][1], scene, how[integ][0], t, s + 1, out)
+                    errs[(integ, t)].append(relmse(beauty(out), ref_image, mask))
+                    remove_render_outputs(out)
         for integ in integrators:
             for t in times:
-                errs = []
-                for s in range(args.seeds):
-                    out = os.path.join(args.out, f"{name}-{integ}-{t:g}s-seed{s + 1}.exr")
-                    render(args.nimbus, scene, integ, t, s + 1, out)
-                    errs.append(compare(args.nimbus, out, ref)["relmse"])
-                    remove_render_outputs(out)
-                med = statistics.median(errs)
+                e = errs[(integ, t)]
+                med = statistics.median(e)
+                corrected = statistics.median([x - ref_var for x in e])
                 rows.append({"scene": name, "integrator": integ, "seconds": t, "relmse_median": med,
-                             "relmse_runs": " ".join(f"{e:.6g}" for e in errs),
-                             "efficiency": 1.0 / (med * t) if med > 0 else float("inf")})
+                             "relmse_runs": " ".join(f"{x:.6g}" for x in e), "reference_variance": ref_var,
+                             "relmse_corrected": corrected,
+                             "efficiency": 1.0 / (corrected * t) if corrected > 0 else float("inf"),
+                             "pixels_compared": float(mask.mean())})
 
     csv_path = os.path.join(args.out, "error-vs-time.csv")
     with open(csv_path, "w", newline="") as f:
@@ -83,12 +151,13 @@ def main():
         w.writeheader()
         w.writerows(rows)
     print(f"\nwrote {csv_path}\n")
-    print(f"{'scene':<16} {'integrator':<12} {'seconds':>8} {'relMSE':>10} {'efficiency':>12} {'vs pt':>7}")
+    print(f"{'scene':<16} {'integrator':<12} {'seconds':>8} {'relMSE':>10} {'ref var':>10} {'corrected':>10} "
+          f"{'efficiency':>12} {'vs pt':>7}")
     for r in rows:
         base = [x for x in rows if x["scene"] == r["scene"] and x["integrator"] == "pt" and x["seconds"] == r["seconds"]]
         ratio = r["efficiency"] / base[0]["efficiency"] if base else float("nan")
         print(f"{r['scene']:<16} {r['integrator']:<12} {r['seconds']:>8g} {r['relmse_median']:>10.4g} "
-              f"{r['efficiency']:>12.4g} {ratio:>7.2f}")
+              f"{r['reference_variance']:>10.4g} {r['relmse_corrected']:>10.4g} {r['efficiency']:>12.4g} {ratio:>7.2f}")
 
     import matplotlib
     matplotlib.use("Agg")
@@ -96,10 +165,14 @@ def main():
     for scene in sorted({r["scene"] for r in rows}):
         fig, ax = plt.subplots(figsize=(6, 4.5))
         for integ in integrators:
-            pts = [(r["seconds"], r["relmse_median"]) for r in rows if r["scene"] == scene and r["integrator"] == integ]
-            ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=integ)
+            pts = [(r["seconds"], r["relmse_median"], r["relmse_corrected"]) for r in rows
+                   if r["scene"] == scene and r["integrator"] == integ]
+            line, = ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=integ)
+            if pts[0][1] != pts[0][2]:
+                ax.loglog([p[0] for p in pts], [max(p[2], 1e-9) for p in pts], "s--", color=line.get_color(),
+                          label=f"{integ}, reference variance removed")
         ax.set_xlabel("seconds")
-        ax.set_ylabel("relMSE (median of seeds)")
+        ax.set_ylabel("relMSE against the reference (median of seeds)")
         ax.set_title(scene)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()

@@ -1,18 +1,18 @@
 #!/bin/bash
 # The figures docs/performance.md takes from one serial run (a quiet machine: nothing else running):
-# §1 throughput, §2 many lights, §4 overhead table, §5 error table. Long: about an hour on 2 cores, plus
-# sphere-point's 8,000-iteration reference when it is missing (~25 minutes).
+# §1 throughput, §2 many lights, §4 overhead table, §5 error table. Long: about two and a half hours on
+# 2 cores (the error stage alone about 100 minutes with its references).
 # Writes the files the document cites:
 #   docs/bench-pt.txt
 #   docs/overhead-64.csv
 #   docs/error-vs-time/<scene>/error-vs-time.csv, <scene>-error-vs-time.png, <scene>-reference.exr.txt
 # and, not committed, the images in docs/many-lights/ and the references docs/error-vs-time/<scene>/*.exr
 # (delete a reference to have it rendered again, e.g. after changing its scene).
-#   [STAGES="bench overhead lights error"] bash bench/run_figures.sh [REFERENCE_SECONDS=240] [TIMES=6,24]
+#   [STAGES="bench overhead lights error"] bash bench/run_figures.sh [REFERENCE_SECONDS=200] [TIMES=5,20]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-REF_SECONDS=${1:-240}
-TIMES=${2:-6,24}
+REF_SECONDS=${1:-200}
+TIMES=${2:-5,20}
 STAGES=${STAGES:-bench overhead lights error}
 stage() { [[ " $STAGES " == *" $1 "* ]]; }
 PY=/usr/bin/python3
@@ -35,33 +35,24 @@ $PY bench/many_lights.py --seconds 10 --reference-iterations 1024 --seeds 5 --ou
 fi
 if stage error; then
 echo "== error vs time"
-# References: nimbus.pt where path tracing converges (a small area light, directly visible caustic); the
-# solver itself, run long, where it alone converges (point, spot and sun light: pt cannot sample them,
-# light tracing cannot see caustics through glass or water). It is consistent and agrees with pt and lt
-# where they converge (tests/caustics).
-for spec in sphere-area:pt sphere-point:caustics ring:caustics pool:caustics glasses:caustics; do
-  scene=${spec%%:*} ref=${spec##*:} dir=docs/error-vs-time/${spec%%:*}
-  times=$TIMES
-  refargs=(--reference-integrator "$ref" --reference-time "$REF_SECONDS")
-  if [[ $scene == sphere-point ]]; then
-    # Path tracing's error here is a fixed bias (the point light's caustic it cannot render) and the
-    # solver's falls as 1/time, so the ratio is also measured at 96 s. A 240 s reference would be noisier
-    # than the solver's 96 s renders: the reference is a fixed 8,000 iterations of the solver.
-    times=$TIMES,96
-    refexr=$dir/$scene-reference.exr
-    if [[ ! -f $refexr ]]; then
-      mkdir -p "$dir"
-      cmd=("$NIMBUS" render scenes/caustics/$scene.yaml -o "$refexr" --integrator caustics --iterations 8000
-           --seed 1000 -q)
-      start=$SECONDS
-      "${cmd[@]}"
-      printf 'command: %s\nwall seconds: %d\ncommit: %s; used by error-vs-time.csv\n' "${cmd[*]}" \
-        $((SECONDS - start)) "$(git rev-parse --short HEAD)" >"$refexr.txt"
-    fi
-    refargs=(--reference "$refexr")
-  fi
-  $PY bench/error_vs_time.py scenes/caustics/$scene.yaml --integrators pt,caustics --times "$times" --seeds 3 \
-    "${refargs[@]}" --out "$dir"
+# Every scene in scenes/, solver against nimbus.pt at equal time, each against an independent reference
+# (one the solver did not render): nimbus.pt where path tracing converges (area lights, no caustics);
+# nimbus.lt where a delta light's caustics sit behind glass or a mirror, compared over the pixels the light
+# tracer covers (every pixel whose camera ray first meets a non-specular surface; --covered-only). The
+# pool (the sun's caustics seen through water) has neither: its reference is the solver's own long
+# render, and says so. Each reference is two renders of REFERENCE_SECONDS (error_vs_time.py). On
+# cornell-point the solver's error falls as 1/time and path tracing's does not, so it also runs 60 s.
+for spec in default:pt:all one-light:pt:all many-lights:pt:all caustics/diffuse-room:pt:all \
+    caustics/sphere-area:pt:all caustics/glasses:lt:covered caustics/sphere-point:lt:covered \
+    caustics/cornell-point:lt:covered caustics/ring:lt:covered caustics/interior:lt:covered \
+    caustics/pool:caustics:all; do
+  IFS=: read -r path ref mode <<<"$spec"
+  scene=$(basename "$path")
+  extra=() times=$TIMES
+  [[ $mode == covered ]] && extra=(--covered-only)
+  [[ $scene == cornell-point ]] && times=$TIMES,60
+  $PY bench/error_vs_time.py scenes/$path.yaml --integrators pt,caustics --times "$times" --seeds 3 \
+    --reference-integrator "$ref" --reference-time "$REF_SECONDS" "${extra[@]}" --out docs/error-vs-time/$scene
 done
 fi
 echo "== done"
