@@ -30,7 +30,9 @@ class Writer {
  public:
   explicit Writer(std::FILE *f) : f_(f) {}
 
+  // An empty block (an empty vector's data() may be null) writes nothing.
   void bytes(const void *data, size_t n) {
+    if (n == 0) return;
     sum_.update(static_cast<const uint8_t *>(data), n);
     if (ok_ && std::fwrite(data, 1, n, f_) != n) ok_ = false;
   }
