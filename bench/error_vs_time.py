@@ -50,10 +50,12 @@ def beauty(path):
     return np.stack([part.values(c).astype(np.float64) for c in "RGB"], axis=-1)
 
 
-def relmse(test, ref, mask):
-    """nimbus compare's relMSE over the pixels of `mask` finite in both images."""
+def relmse(test, ref, mask, scale=None):
+    """nimbus compare's relMSE over the pixels of `mask` finite in both images, each squared difference
+    divided by scale^2 + 0.01 (scale: `ref` unless given)."""
+    scale = ref if scale is None else scale
     keep = mask & np.isfinite(test).all(axis=-1) & np.isfinite(ref).all(axis=-1)
-    return float(((test[keep] - ref[keep]) ** 2 / (ref[keep] ** 2 + 0.01)).mean())
+    return float(((test[keep] - ref[keep]) ** 2 / (scale[keep] ** 2 + 0.01)).mean())
 
 
 def region_mask(ref, covered_only, crop):
@@ -123,9 +125,7 @@ def main():
         mask = region_mask(ref_image, args.covered_only, crop)
         ref_var = 0.0
         if len(halves) == 2:
-            d = halves[0] - halves[1]
-            keep = mask & np.isfinite(d).all(axis=-1)
-            ref_var = float((d[keep] ** 2 / (ref_image[keep] ** 2 + 0.01)).mean()) / 4
+            ref_var = relmse(halves[0], halves[1], mask, scale=ref_image) / 4
         errs = {(integ, t): [] for integ in integrators for t in times}
         for t in times:
             for s in range(args.seeds):

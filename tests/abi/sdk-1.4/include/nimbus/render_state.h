@@ -29,7 +29,8 @@ typedef struct nimbus_render_state_v1 {
    * not begun: writes through `writer` (host-owned, borrowed for this call) what the plugin's later
    * iterations depend on that begin_render does not recompute. A failure costs the checkpoint, not the
    * render. */
-  nimbus_status_t (*save)(const nimbus_plugin_t *plugin, uint64_t iterations, const nimbus_state_writer_t *writer);
+  nimbus_status_t (*save)(const nimbus_plugin_t *plugin, uint64_t iterations,
+                          const nimbus_state_writer_t *writer);
   /* [main-thread] When resuming, after begin_render (info.first_iteration is iterations + 1) and before
    * the first begin_iteration: `size` bytes (borrowed) that save wrote after `iterations` iterations, in
    * this process or an earlier one. Bytes it cannot read (another version's format, say) leave the state
