@@ -3,9 +3,9 @@
 
 namespace nimbus::caustics {
 
-uint32_t merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
-                       const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s,
-                       CausticsRecord &rec) {
+LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
+                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s,
+                         CausticsRecord &rec) {
   uint32_t evaluated = 0;
   const float r2 = r * r;
   const float neff = float(mc.map_paths);
@@ -20,7 +20,7 @@ uint32_t merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, c
   uint32_t ng_code = 0;
   bool ng_encoded = false;
   Rgb sum(0);  // without LightMix, one record entry per lookup
-  mc.map->query(Vec3f::load(ix.p), r, [&](const PhotonData &ph, float d2) {
+  const uint32_t leaves = mc.map->query(Vec3f::load(ix.p), r, [&](const PhotonData &ph, float d2) {
     const uint32_t k = s + ph.depth();
     if (k > mc.max_depth) return;
     if (!ng_encoded) ng_code = encode_octahedral(ng), ng_encoded = true;
@@ -43,7 +43,7 @@ uint32_t merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, c
       sum += c;
   });
   if (!mc.ids.lightmix && !is_black(sum)) rec.add_merge(beta * sum * inv_paths, 0, mc.ids);
-  return evaluated;
+  return {leaves, evaluated};
 }
 
 }  // namespace nimbus::caustics

@@ -34,10 +34,16 @@ struct MergeContext {
   float scene_radius = 1;
 };
 
+// What one lookup did, for the budget's work count: kd-tree leaves scanned, photons evaluated.
+struct LookupCost {
+  uint32_t leaves = 0, evaluated = 0;
+  uint64_t work() const { return kLeafWork * leaves + kPhotonWork * evaluated; }
+};
+
 // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
-// Returns the number of photons it evaluated (the budget's work count).
-uint32_t merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
-                       const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, CausticsRecord &rec);
+LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
+                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s,
+                         CausticsRecord &rec);
 
 // lp (mis.hpp) of the light a camera path hit, and of the one its NEE sampled: the photon density of
 // the path's last segment, 0 where no photon is emitted that way (then no merge technique exists).
@@ -51,7 +57,7 @@ inline float nee_lp(const EmitterSet &emitters, const sdk::LightSample &s) {
 // What one worker's camera paths counted while a map was active.
 struct CameraTally {
   uint64_t work = 0;         // budget work units (schedule.hpp) of the paths themselves
-  uint64_t lookup_work = 0;  // and of the photons their lookups evaluated
+  uint64_t lookup_work = 0;  // and of their lookups (LookupCost)
   uint64_t mis_clamped = 0;  // paths whose MIS weights met an overflow (mis.hpp)
 };
 
@@ -89,8 +95,8 @@ class MergingPath {
     // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
     if (lookup_ && v.segments + 2 <= mc_.max_depth) {
       radii_.add(radius_);
-      tally_.lookup_work +=
-          kPhotonWork * merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, rec);
+      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, rec);
+      tally_.lookup_work += c.work();
     }
   }
 

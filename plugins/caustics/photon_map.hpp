@@ -161,10 +161,13 @@ class PhotonKdTree {
   }
 
   // Calls f(PhotonData, squared distance) for every photon with |p - q|^2 <= r^2 (computed in float as
-  // dx*dx + dy*dy + dz*dz), in tree order.
+  // dx*dx + dy*dy + dz*dz), in tree order. Returns the leaves it scanned (0 when may_hold turned the
+  // query away): the lookup's cost, which grows with the photons around q whether or not any lies
+  // within r.
   template <class F>
-  void query(const Vec3f &q, float r, F &&f) const {
-    if (!may_hold(q, r)) return;
+  uint32_t query(const Vec3f &q, float r, F &&f) const {
+    if (!may_hold(q, r)) return 0;
+    uint32_t leaves = 0;
     const float r2 = r * r;
     const float qa[3] = {q.x, q.y, q.z};  // indexed by the split axis: a load, not Vec3f's branches
     struct Item {
@@ -187,13 +190,14 @@ class PhotonKdTree {
         id = right ? 2 * id + 2 : 2 * id + 1;
         (right ? lo : hi) = mid;
       }
+      ++leaves;
       for (uint32_t i = lo; i < hi; ++i) {
         const Vec3f &p = positions_[i];
         const float dx = p.x - q.x, dy = p.y - q.y, dz = p.z - q.z;
         const float d2 = dx * dx + dy * dy + dz * dz;
         if (d2 <= r2) f(data_[i], d2);
       }
-      if (top == 0) return;
+      if (top == 0) return leaves;
       const Item it = stack[--top];
       id = it.id, lo = it.lo, hi = it.hi;
     }

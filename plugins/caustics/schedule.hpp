@@ -34,7 +34,9 @@ inline float merge_radius(float theta_pix, float ell, uint32_t j, float scene_ra
 
 struct ScheduleConfig {
   uint64_t n_max = uint64_t(1) << 22;  // photon paths per pass (spec 5: a fixed maximum)
-  uint64_t n_min = uint64_t(1) << 14;
+  // A floor low enough that a map reused over several iterations stays small: a lookup's cost grows with
+  // the map's photons (kLeafWork), so a large floor pass served k times costs k times its photon paths.
+  uint64_t n_min = uint64_t(1) << 10;
   uint64_t probe = uint64_t(1) << 16;  // the first pass
   uint64_t camera_paths = 1;           // camera paths per iteration (the render region's pixels)
 };
@@ -45,8 +47,10 @@ inline constexpr uint64_t kMinIterationsPerMap = 2;
 // Work units of the budget's cost model, counted rather than timed so that the photon budget, and so the
 // image, does not depend on the machine's load or the thread count (same seed, same image). A ray with
 // the surface interaction the host builds for it is 2 units; a photon a lookup evaluates (one host BSDF
-// evaluation and the kernel) or a photon stored (copy and kd-tree build) is 1.
-inline constexpr uint64_t kRayWork = 2, kPhotonWork = 1;
+// evaluation and the kernel) or a photon stored (copy and kd-tree build) is 1; a kd-tree leaf a lookup
+// scans (the descent to it and 8 positions: cache misses, whether or not a photon lies within r) is
+// kLeafWork.
+inline constexpr uint64_t kRayWork = 2, kPhotonWork = 1, kLeafWork = 1;
 
 // What the solver measured over the last iterations (spec 5's efficiency model): per camera path, the
 // summed relative variance of the image carried by merges (v_merge) and by the rest (v_camera), at

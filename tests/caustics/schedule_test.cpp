@@ -82,7 +82,7 @@ TEST(CausticsSchedule, ProbeThenTheEfficientBudget) {
   EXPECT_NEAR(s.photon_ratio(), std::sqrt(rho * optimal_photon_ratio(e2)), 1e-9);
   // Clamped to [N_min, N_max].
   for (int i = 0; i < 60; ++i) s.iteration_done(4, 0.2, sample(1e-12, 1, 1, 1, 1e6));
-  EXPECT_EQ(s.plan(5), 1u << 14);
+  EXPECT_EQ(s.plan(5), 1u << 10);
   for (int i = 0; i < 60; ++i) s.iteration_done(4, 0.2, sample(1e6, 1e-6, 1, 1e6, 1));
   EXPECT_EQ(s.plan(5), 1u << 22);  // rho = 3e6 (the guard): N_max
 }
@@ -94,8 +94,8 @@ TEST(CausticsSchedule, LargePassesServeSeveralIterations) {
   s.pass_done(1, 1 << 16, 100);    // probe: 65536 paths at rho 0.5 = 32 camera passes
   EXPECT_EQ(s.next_pass(), 33u);
   EXPECT_NEAR(s.map_photon_ratio(), 0.5, 1e-12);
-  for (uint64_t i = 1; i < 33; ++i) EXPECT_EQ(s.plan(i + 1), i + 1 < 33 ? 0u : 1u << 14) << i;
-  s.pass_done(33, 1 << 14, 100);  // N_min = 16384 = 8 camera passes at rho 0.5
+  for (uint64_t i = 1; i < 33; ++i) EXPECT_EQ(s.plan(i + 1), i + 1 < 33 ? 0u : 4096u) << i;
+  s.pass_done(33, 1 << 14, 100);  // 16384 paths = 8 camera passes at rho 0.5
   EXPECT_EQ(s.next_pass(), 41u);
 }
 
@@ -105,7 +105,7 @@ TEST(CausticsSchedule, BackOffWhenUseless) {
   EXPECT_FALSE(s.map_active());
   EXPECT_EQ(s.idle_level(), 1u);
   EXPECT_EQ(s.plan(2), 0u);
-  EXPECT_EQ(s.plan(3), 1u << 14);  // after 2^1 iterations without photons, N_min
+  EXPECT_EQ(s.plan(3), 1u << 10);  // after 2^1 iterations without photons, N_min
   s.pass_done(3, 1 << 14, 5);      // photons, but no useful pixel
   s.iteration_done(3, 0.0, EfficiencySample{});
   EXPECT_FALSE(s.map_active());
