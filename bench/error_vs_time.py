@@ -33,7 +33,7 @@ import time
 
 import numpy as np
 
-from nimbus_tools import read_exr, remove_render_outputs, run
+from nimbus_tools import read_rgb, remove_render_outputs, run
 
 
 def render(nimbus, scene, integrator, seconds, seed, out):
@@ -45,9 +45,7 @@ def render(nimbus, scene, integrator, seconds, seed, out):
 
 
 def beauty(path):
-    """The beauty layer (the file's first part, channels R, G, B) as float64 rows x columns x 3."""
-    part = read_exr(path)[0]
-    return np.stack([part.values(c).astype(np.float64) for c in "RGB"], axis=-1)
+    return read_rgb(path)
 
 
 def relmse(test, ref, mask, scale=None):

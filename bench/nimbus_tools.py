@@ -285,3 +285,12 @@ def read_exr(path):
             if proc.returncode != 0:
                 raise ValueError(f"{' '.join(cmd)} failed: {proc.stdout.strip()}")
             return _exr_read_native(plain)
+
+
+def read_rgb(path, layer="beauty"):
+    """A render element's R, G, B (channels R, G, B for beauty, LAYER.R... otherwise) of an EXR's first
+    part as float64, rows x columns x 3. Raises KeyError when the file has no such element."""
+    import numpy as np
+    part = read_exr(path)[0]
+    prefix = "" if layer == "beauty" else layer + "."
+    return np.stack([part.values(prefix + c).astype(np.float64) for c in "RGB"], axis=-1)

@@ -10,51 +10,27 @@ expressed in relMSE units as `nimbus compare` does: mean of (a - b)^2 / 2 / (r^2
 (a + b) / 2 without one). Printed for beauty, for the regular light (beauty - caustics: paths without an
 eligible merge technique, which nimbus.caustics renders exactly as nimbus.pt does) and for the
 caustics element. With REF, also each render's relMSE and the mean of their bias estimate
-((a + b) / 2 - r)^2 - var / 2, so relMSE ~ variance + bias^2. Images are read through oiiotool
-(Debian's openimageio-tools) as FITS; --crop limits every figure to the pixels [X0, X1) x [Y0, Y1) (a
+((a + b) / 2 - r)^2 - var / 2, so relMSE ~ variance + bias^2. Images are read by nimbus_tools.read_rgb;
+--crop limits every figure to the pixels [X0, X1) x [Y0, Y1) (a
 caustic's region). Not part of CI.
 """
 import argparse
-import os
-import subprocess
-import tempfile
 
 import numpy as np
+
+import nimbus_tools
 
 
 CROP = None  # (x0, y0, x1, y1) or None: the whole image
 
 
-def read_channel(path, channel, tmp):
-    """One channel as a float array, through a single-plane float FITS file (no PFM writer in Debian 12's
-    OIIO): 2880-byte header blocks of 80-character cards up to END, then big-endian float32 data."""
-    out = os.path.join(tmp, "channel.fits")
-    cut = []
+def read_rgb(path, layer):
+    """The element's R, G, B, limited to CROP, shape (pixels, 3)."""
+    rgb = nimbus_tools.read_rgb(path, layer)
     if CROP:
         x0, y0, x1, y1 = CROP
-        cut = ["--cut", f"{x1 - x0}x{y1 - y0}+{x0}+{y0}"]
-    subprocess.run(["oiiotool", path, "--ch", channel] + cut + ["-d", "float", "-o", out], check=True,
-                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    with open(out, "rb") as f:
-        raw = f.read()
-    pos, dims = 0, {}
-    while True:
-        block = raw[pos:pos + 2880]
-        pos += 2880
-        cards = [block[i:i + 80].decode("ascii") for i in range(0, 2880, 80)]
-        for c in cards:
-            if c.startswith("NAXIS1") or c.startswith("NAXIS2"):
-                dims[c[:6]] = int(c.split("=")[1].split("/")[0])
-        if any(c.startswith("END") for c in cards):
-            break
-    n = dims["NAXIS1"] * dims["NAXIS2"]
-    return np.frombuffer(raw, dtype=">f4", count=n, offset=pos).astype(np.float64)
-
-
-def read_rgb(path, layer, tmp):
-    """Channels layer.R, layer.G, layer.B (R, G, B for beauty), shape (pixels, 3)."""
-    prefix = "" if layer == "beauty" else layer + "."
-    return np.stack([read_channel(path, prefix + c, tmp) for c in "RGB"], axis=-1)
+        rgb = rgb[y0:y1, x0:x1]
+    return rgb.reshape(-1, 3)
 
 
 def relative_variance(x, y, ref):
@@ -72,13 +48,12 @@ def main():
     args = ap.parse_args()
     global CROP
     CROP = tuple(int(v) for v in args.crop.split(",")) if args.crop else None
-    with tempfile.TemporaryDirectory() as tmp:
-        a, b = read_rgb(args.a, "beauty", tmp), read_rgb(args.b, "beauty", tmp)
-        try:
-            ca, cb = read_rgb(args.a, "caustics", tmp), read_rgb(args.b, "caustics", tmp)
-        except subprocess.CalledProcessError:  # no caustics element (nimbus.pt): beauty only
-            ca = cb = None
-        ref = read_rgb(args.reference, "beauty", tmp) if args.reference else (a + b) / 2
+    a, b = read_rgb(args.a, "beauty"), read_rgb(args.b, "beauty")
+    try:
+        ca, cb = read_rgb(args.a, "caustics"), read_rgb(args.b, "caustics")
+    except (KeyError, StopIteration):  # no caustics element (nimbus.pt): beauty only
+        ca = cb = None
+    ref = read_rgb(args.reference, "beauty") if args.reference else (a + b) / 2
     ok = np.isfinite(a).all(-1) & np.isfinite(b).all(-1) & np.isfinite(ref).all(-1)
     den = ref[ok] ** 2 + 0.01
 
