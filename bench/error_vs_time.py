@@ -44,10 +44,6 @@ def render(nimbus, scene, integrator, seconds, seed, out):
     return time.monotonic() - t0, cmd
 
 
-def beauty(path):
-    return read_rgb(path)
-
-
 def relmse(test, ref, mask, scale=None):
     """nimbus compare's relMSE over the pixels of `mask` finite in both images, each squared difference
     divided by scale^2 + 0.01 (scale: `ref` unless given)."""
@@ -118,7 +114,7 @@ def main():
                 with open(ref + ".txt", "w") as f:
                     f.write(f"command: {' '.join(cmd)}\nwall seconds: {secs:.1f}\n"
                             f"commit: {commit}; used by error-vs-time.csv\n")
-        halves = [beauty(r) for r in refs]
+        halves = [read_rgb(r) for r in refs]
         ref_image = sum(halves) / len(halves)
         mask = region_mask(ref_image, args.covered_only, crop)
         ref_var = 0.0
@@ -130,7 +126,7 @@ def main():
                 for integ in integrators:
                     out = os.path.join(args.out, f"{name}-{integ}-{t:g}s-seed{s + 1}.exr")
                     render(how[integ][1], scene, how[integ][0], t, s + 1, out)
-                    errs[(integ, t)].append(relmse(beauty(out), ref_image, mask))
+                    errs[(integ, t)].append(relmse(read_rgb(out), ref_image, mask))
                     remove_render_outputs(out)
         for integ in integrators:
             for t in times:
