@@ -16,6 +16,7 @@
 
 #include "caustics_record.hpp"
 #include "emitters.hpp"
+#include "lookup_roulette.hpp"
 #include "merging.hpp"
 #include "photon_pass.hpp"
 #include "schedule.hpp"
@@ -96,6 +97,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     pass_.release();
     map_active_ = rebuild_map_ = false;
     map_request_ = 0, map_reach_ = 0, photon_work_ = 0;
+    roulette_ = {};
     stats_ = {};
     return NIMBUS_OK;
   }
@@ -127,6 +129,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     }
     map_active_ = schedule_.map_active();
     merge_.radius_per_length = radius_per_length(theta_pix_, schedule_.passes());
+    merge_.lookup_probability = {roulette_.probability(kFirstLookup), roulette_.probability(kLaterLookup)};
     return NIMBUS_OK;
   }
 
@@ -134,7 +137,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   void sample(const nimbus_thread_ctx_t &ctx, uint32_t x, uint32_t y, nimbus_rng_t &rng,
               CausticsRecord &rec) {
     if (map_active_) {
-      MergingPath path(merge_, lookup_radii_[ctx], tallies_[ctx]);
+      MergingPath path(merge_, lookup_radii_[ctx], tallies_[ctx], mix64(rng.state ^ rng.inc));
       trace(ctx, x, y, rng, rec, path);
     } else if (classify_) {
       ClassifyingPath path(emitters_, services().bsdf, host().get());
@@ -153,7 +156,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       rec.merge.store(a);
       services().film->accumulate(host().get(), &ctx, merge_id_, x, y, a);
     }
-    if (armed_) useful_.add(size_t(y) * width_ + x, rec.beauty, rec.merge);
+    if (armed_) useful_.add(size_t(y) * width_ + x, rec.beauty, rec.merge, rec.lookup_moment);
   }
 
   nimbus_status_t end_iteration(uint64_t iteration) override {
@@ -166,9 +169,20 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     if (map_active_) {
       // The efficiency model's inputs (spec 5): variances of this window, work per path of each side.
       uint64_t camera_work = 0, lookup_work = 0;
-      for (CameraTally &t : tallies_)
-        camera_work += t.work, lookup_work += t.lookup_work, stats_.mis_clamped += t.mis_clamped, t = {};
+      std::array<uint64_t, kLookupClasses> class_work{};
+      for (CameraTally &t : tallies_) {
+        camera_work += t.work, stats_.mis_clamped += t.mis_clamped;
+        for (uint32_t c = 0; c < kLookupClasses; ++c) class_work[c] += t.lookup_work[c];
+        t = {};
+      }
+      for (uint64_t w : class_work) lookup_work += w;
       const double n_cam = double(std::max<uint64_t>(1, pixels)), rho = schedule_.map_photon_ratio();
+      RouletteSample roulette{summary.v_camera + summary.v_merge,
+                              summary.second_moment,
+                              double(camera_work) / n_cam + rho * photon_work_,
+                              {}};
+      for (uint32_t c = 0; c < kLookupClasses; ++c) roulette.lookup_work[c] = double(class_work[c]) / n_cam;
+      roulette_.update(roulette);
       const double per_photon_path = photon_work_ + (rho > 0 ? double(lookup_work) / (rho * n_cam) : 0.0);
       const EfficiencySample e{summary.v_merge, summary.v_camera, rho, double(camera_work) / n_cam,
                                per_photon_path};
@@ -189,6 +203,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       // Camera paths whose MIS weights met an overflow (mis.hpp): 0 in any sane scene.
       progress_->stat_add(h, "caustics_mis_clamped", double(stats_.mis_clamped));
       progress_->stat_add(h, "caustics_photon_ratio", schedule_.photon_ratio());
+      // The lookup roulette's final probabilities (lookup_roulette.hpp).
+      progress_->stat_add(h, "caustics_lookup_probability_first", roulette_.probability(kFirstLookup));
+      progress_->stat_add(h, "caustics_lookup_probability_later", roulette_.probability(kLaterLookup));
       const double bytes =
           stats_.photons > 0 ? double(stats_.photon_bytes) / double(stats_.photons) : double(sizeof(Photon));
       progress_->stat_add(h, "caustics_bytes_per_photon", bytes);
@@ -207,6 +224,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     for (RadiusHistogram &r : lookup_radii_) radii.add(r);
     w.put_array(std::as_const(radii).counts());
     useful_.save(w);
+    roulette_.save(w);
     w.put(stats_);
     return NIMBUS_OK;
   }
@@ -223,11 +241,14 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     float reach = 0;
     RadiusHistogram radii;
     UsefulPixels useful = useful_;
+    LookupRoulette roulette;
     Stats stats;
     if (!(schedule.restore(r) && r.get(work) && r.get(request) && r.get(reach) &&
-          r.get_array(radii.counts()) && useful.restore(r) && r.get(stats) && r.done()))
+          r.get_array(radii.counts()) && useful.restore(r) && roulette.restore(r) && r.get(stats) &&
+          r.done()))
       return NIMBUS_E_INVALID_ARG;
     schedule_ = schedule, photon_work_ = work, map_request_ = request, map_reach_ = reach;
+    roulette_ = roulette;
     bool first = true;
     for (RadiusHistogram &h : lookup_radii_) {
       h.clear();
@@ -284,8 +305,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   MergeContext merge_;        // what camera passes read while the map is active
   bool map_active_ = false;
   UsefulPixels useful_;
+  LookupRoulette roulette_;
   // The format of save_state's bytes.
-  static constexpr uint32_t kStateVersion = 1;
+  static constexpr uint32_t kStateVersion = 2;
   struct Stats {
     uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
     uint64_t mis_clamped = 0;

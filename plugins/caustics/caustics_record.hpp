@@ -4,7 +4,11 @@
 // plus `caustics` sum to beauty.
 #pragma once
 
+#include <array>
+
 #include <nimbus/cpp/sample_record.hpp>
+
+#include "lookup_roulette.hpp"
 
 namespace nimbus::caustics {
 
@@ -12,10 +16,14 @@ using sdk::ElementIds;
 
 struct CausticsRecord : sdk::SampleRecord {
   Rgb merge;
+  // Per class of lookup, the sum of q Y^2 over the sample's lookups (Y: the luminance one added), the
+  // lookup roulette's measure of what the class's merges carry.
+  std::array<float, kLookupClasses> lookup_moment{};
 
   void reset() {
     SampleRecord::reset();
     merge = Rgb(0);
+    lookup_moment = {};
   }
 
   // A photon-map merge contribution: always caustic light.

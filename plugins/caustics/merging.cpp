@@ -4,13 +4,15 @@
 namespace nimbus::caustics {
 
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
-                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s,
+                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
                          CausticsRecord &rec) {
   uint32_t evaluated = 0;
   const float r2 = r * r;
   const float neff = float(mc.map_paths);
-  const float inv_paths = 1.0f / neff;
-  const Mis m_neff = mis(Mis(neff)), eta = mis(kPi * r2 * Mis(neff));
+  const float inv_paths = 1.0f / (neff * q);
+  const Mis m_neff = mis(Mis(neff) * q), eta = mis(kPi * r2 * Mis(neff) * q);
+  // The merges at the photon's rough vertices (B) are lookups after the camera path's first rough vertex.
+  const Mis m_neff_b = mis(Mis(neff) * mc.lookup_probability[kLaterLookup]);
   const Vec3f ng = Vec3f::load(ix.ng);
   float wo_arr[3];
   wo.store(wo_arr);
@@ -19,7 +21,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
   // the first photon found: most lookups find none (query() turns them away first).
   uint32_t ng_code = 0;
   bool ng_encoded = false;
-  Rgb sum(0);  // without LightMix, one record entry per lookup
+  Rgb sum(0);  // the lookup's light (without LightMix, one record entry per lookup)
   const uint32_t leaves = mc.map->query(Vec3f::load(ix.p), r, [&](const PhotonData &ph, float d2) {
     const uint32_t k = s + ph.depth();
     if (k > mc.max_depth) return;
@@ -33,17 +35,17 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     const Rgb fr = Rgb::load(f);
     if (is_black(fr)) return;
     const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
-                                 m_neff, mis_state.gamma_sum(k), mis_state.clamped);
+                                 m_neff_b, mis_state.gamma_sum(k), mis_state.clamped);
     const float kernel = kernel_norm * (1 - d2 / r2);
     const Rgb c = fr * Rgb::load(ph.power) * (w * kernel);
     if (!is_finite(c) || is_black(c)) return;
-    if (mc.ids.lightmix)
-      rec.add_merge(beta * c * inv_paths, (*mc.light_group)[ph.light()], mc.ids);
-    else
-      sum += c;
+    if (mc.ids.lightmix) rec.add_merge(beta * c * inv_paths, (*mc.light_group)[ph.light()], mc.ids);
+    sum += c;
   });
-  if (!mc.ids.lightmix && !is_black(sum)) rec.add_merge(beta * sum * inv_paths, 0, mc.ids);
-  return {leaves, evaluated};
+  if (is_black(sum)) return {leaves, evaluated, 0.0f};
+  const Rgb light = beta * sum * inv_paths;
+  if (!mc.ids.lightmix) rec.add_merge(light, 0, mc.ids);
+  return {leaves, evaluated, luminance(light)};
 }
 
 }  // namespace nimbus::caustics

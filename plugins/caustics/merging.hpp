@@ -6,12 +6,14 @@
 
 #include <nimbus/nimbus.hpp>
 
+#include <array>
 #include <vector>
 
 #include <nimbus/cpp/camera_path.hpp>
 
 #include "caustics_record.hpp"
 #include "emitters.hpp"
+#include "lookup_roulette.hpp"
 #include "mis.hpp"
 #include "occupancy_filter.hpp"
 #include "photon_map.hpp"
@@ -32,17 +34,23 @@ struct MergeContext {
   uint64_t map_paths = 0;       // photon paths behind the map (N_eff)
   float radius_per_length = 0;  // merge radius per unit path length at the map's pass
   float scene_radius = 1;
+  // Lookup probability per class of rough vertex (lookup_roulette.hpp), set before each camera pass.
+  std::array<float, kLookupClasses> lookup_probability{1.0f, 1.0f};
 };
 
-// What one lookup did, for the budget's work count: kd-tree leaves scanned, photons evaluated.
+// What one lookup did: for the budget's work count, kd-tree leaves scanned and photons evaluated; for
+// the lookup roulette, the luminance of the light it added.
 struct LookupCost {
   uint32_t leaves = 0, evaluated = 0;
+  float light = 0;
   uint64_t work() const { return kLeafWork * leaves + kPhotonWork * evaluated; }
 };
 
 // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
+// q: the probability that the path looked up here (the merges count 1/q times, and the merge technique
+// has q times the photon density in their weights).
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
-                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s,
+                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
                          CausticsRecord &rec);
 
 // lp (mis.hpp) of the light a camera path hit, and of the one its NEE sampled: the photon density of
@@ -56,9 +64,9 @@ inline float nee_lp(const EmitterSet &emitters, const sdk::LightSample &s) {
 
 // What one worker's camera paths counted while a map was active.
 struct CameraTally {
-  uint64_t work = 0;         // budget work units (schedule.hpp) of the paths themselves
-  uint64_t lookup_work = 0;  // and of their lookups (LookupCost)
-  uint64_t mis_clamped = 0;  // paths whose MIS weights met an overflow (mis.hpp)
+  uint64_t work = 0;                                      // budget work units (schedule.hpp) of the paths
+  std::array<uint64_t, kLookupClasses> lookup_work = {};  // and of their lookups (LookupCost), per class
+  uint64_t mis_clamped = 0;                               // paths whose MIS weights met an overflow
 };
 
 class MergingPath {
@@ -66,8 +74,10 @@ class MergingPath {
   static constexpr bool kReversePdfs = true;
 
   // tally: this worker's counts, which this path adds to.
-  MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, CameraTally &tally)
-      : mc_(mc), radii_(lookup_radii), tally_(tally) {}
+  // key: the camera sample's own hash, from which the lookup roulette draws (not from the camera path's
+  // random numbers, which stay those of nimbus.pt).
+  MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, CameraTally &tally, uint64_t key)
+      : mc_(mc), radii_(lookup_radii), tally_(tally), key_(key) {}
   ~MergingPath() {
     if (mis_.clamped) ++tally_.mis_clamped;
   }
@@ -92,11 +102,15 @@ class MergingPath {
     lookup_ = mis_.append(rough);
     if (lookup_ && mis_.rough_count == 1)
       radius_ = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
+    const LookupClass cls = lookup_class(mis_.rough_count);
+    q_ = mc_.lookup_probability[cls];
     // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
-    if (lookup_ && v.segments + 2 <= mc_.max_depth) {
+    if (lookup_ && v.segments + 2 <= mc_.max_depth &&
+        (q_ >= 1 || float(mix64(key_ ^ v.segments) >> 40) * 0x1p-24f < q_)) {
       radii_.add(radius_);
-      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, rec);
-      tally_.lookup_work += c.work();
+      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, rec);
+      tally_.lookup_work[cls] += c.work();
+      rec.lookup_moment[cls] += q_ * c.light * c.light;
     }
   }
 
@@ -117,7 +131,7 @@ class MergingPath {
   void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
                uint32_t segments) {
     mis_.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup_, segments,
-                 kPi * Mis(radius_) * radius_ * Mis(mc_.map_paths));
+                 kPi * Mis(radius_) * radius_ * Mis(mc_.map_paths) * q_);
   }
 
  private:
@@ -126,6 +140,8 @@ class MergingPath {
   CameraTally &tally_;
   CameraMis mis_;
   float radius_ = 0;     // r_a: fixed at the first rough vertex, used by every lookup (spec 3.5)
+  uint64_t key_;         // the lookup roulette's draws: hashes of it and the vertex
+  float q_ = 1;          // lookup probability at the current vertex (its merge density's factor)
   float length_ = 0;     // path length from the lens to the current vertex
   bool lookup_ = false;  // the current vertex looks photons up
 };

@@ -6,15 +6,18 @@
 // each pixel has two or more samples under one map: their spread is the merges' camera-side variance
 // (which only camera samples reduce), and the spread of the per-map means beyond it is the photon noise.
 // Half the squared difference of consecutive maps' means estimates Var(mean) = V_photon + V_within / n.
+// Each class of lookup's second moment (lookup_roulette.hpp) is kept on the same window and weights.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include <nimbus/cpp/math.hpp>
 
+#include "lookup_roulette.hpp"
 #include "schedule.hpp"
 
 namespace nimbus::caustics {
@@ -31,6 +34,8 @@ class UsefulPixels {
     double useful = 0;    // share of the rendered pixels with Mp > kIdleThreshold Tp
     double v_merge = 0;   // mean over pixels of var(merge part) / (Tp^2 + offset), per iteration
     double v_camera = 0;  // the same for the rest of the sample (beauty minus merges)
+    // per class of lookup, the mean over pixels of the lookups' second moment at q = 1 / (Tp^2 + offset)
+    std::array<double, kLookupClasses> second_moment{};
   };
 
   // [main-thread] Zeroes the sums of a width x height image (0: none kept).
@@ -50,11 +55,13 @@ class UsefulPixels {
     return true;
   }
 
-  // [render-thread] One sample of pixel i (each pixel belongs to one tile, so no two threads meet).
-  void add(size_t i, const Rgb &beauty, const Rgb &merged) {
+  // [render-thread] One sample of pixel i (each pixel belongs to one tile, so no two threads meet);
+  // moment: per class of lookup, the sum over its lookups of q Y^2 (Y the luminance a lookup added).
+  void add(size_t i, const Rgb &beauty, const Rgb &merged, const std::array<float, kLookupClasses> &moment) {
     const float b = luminance(beauty), m = luminance(merged), c = b - m;
     Sums &s = sums_[i];
     s.n += 1, s.total += b, s.merge += m, s.camera2 += c * c;
+    for (uint32_t k = 0; k < kLookupClasses; ++k) s.moment[k] += moment[k];
     s.map_n += 1, s.map_merge += m, s.map_merge2 += m * m;
   }
 
@@ -95,12 +102,15 @@ class UsefulPixels {
         // own map. The merges' camera-side variance counts with the rest (camera samples reduce it).
         if (s.has_between) out.v_merge += double(s.between) * iterations_per_map * weight;
         out.v_camera += (std::max(0.0, s.camera2 / n - mean_c * mean_c) + double(s.within)) * weight;
+        for (uint32_t k = 0; k < kLookupClasses; ++k) out.second_moment[k] += s.moment[k] / n * weight;
       }
       s.n *= kWindowDecay, s.total *= kWindowDecay, s.merge *= kWindowDecay, s.camera2 *= kWindowDecay;
+      for (float &m : s.moment) m *= kWindowDecay;
     }
     if (pixels > 0) {
       out.useful = std::min(1.0, double(useful) / double(pixels));
       out.v_merge /= double(pixels), out.v_camera /= double(pixels);
+      for (double &m : out.second_moment) m /= double(pixels);
     }
     return out;
   }
@@ -109,12 +119,13 @@ class UsefulPixels {
   // No padding bytes (the flags' are explicit), so that a saved state is the same bytes every time.
   struct Sums {
     float n = 0, total = 0, merge = 0, camera2 = 0;  // the window's samples
+    float moment[kLookupClasses] = {0, 0};           // the window's lookup second moments
     float map_n = 0, map_merge = 0, map_merge2 = 0;  // the current map's samples
     float previous = 0;                              // the previous map's merge mean
     float between = 0, within = 0;                   // photon variance of a map; merges' sample variance
     uint8_t has_previous = 0, has_between = 0, unused[2] = {0, 0};
   };
-  static_assert(sizeof(Sums) == 11 * sizeof(float));
+  static_assert(sizeof(Sums) == (11 + kLookupClasses) * sizeof(float));
   std::vector<Sums> sums_;
 };
 

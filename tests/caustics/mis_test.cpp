@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "lookup_roulette.hpp"
 #include "mis.hpp"
 
 namespace nimbus::caustics {
@@ -31,6 +32,8 @@ struct SyntheticPath {
   double pmf = 1;             // NEE selection (delta lights)
   double area = 1, neff = 1;  // pi r_a^2 (first rough vertex) and the photon path count
   uint32_t d_photon = kPhotonMaxVertices;
+  // Lookup probabilities (lookup_roulette.hpp) at the camera path's first rough vertex and after it.
+  double q_first = 1, q_later = 1;
 
   bool finite() const { return light == LightKind::Area || light == LightKind::Point; }
   bool hittable() const { return light == LightKind::Area || light == LightKind::Infinite; }
@@ -88,6 +91,10 @@ SyntheticPath random_path(std::mt19937_64 &g, double spread = 1e3, uint32_t max_
   p.d_photon = std::uniform_real_distribution<double>(0, 1)(g) < 0.3
                    ? std::uniform_int_distribution<uint32_t>(2, 6)(g)
                    : kPhotonMaxVertices;
+  if (std::uniform_real_distribution<double>(0, 1)(g) < 0.5) {
+    p.q_first = log_uniform(g, kMinLookupProbability, 1);
+    p.q_later = log_uniform(g, kMinLookupProbability, 1);
+  }
   return p;
 }
 
@@ -104,6 +111,13 @@ struct ClosedForm {
 
 // pi r_s^2 at lookup vertex x_s: every lookup of a path uses its first rough vertex's radius.
 double area_at(const SyntheticPath &p, uint32_t) { return p.area; }
+
+// The lookup probability at rough vertex x_s: q_first at the path's first rough vertex.
+double lookup_probability_at(const SyntheticPath &p, uint32_t s) {
+  for (uint32_t j = 1; j < s; ++j)
+    if (p.rough(j)) return p.q_later;
+  return p.q_first;
+}
 
 // The merge at s is a technique (E1-E4; lookups at every rough vertex).
 bool merge_eligible(const SyntheticPath &p, uint32_t s) {
@@ -133,7 +147,7 @@ ClosedForm closed_form(const SyntheticPath &p) {
   f.qm.assign(k + 1, 0);
   for (uint32_t s = 1; s < k; ++s) {
     if (!merge_eligible(p, s)) continue;
-    double q = area_at(p, s) * p.neff;
+    double q = area_at(p, s) * p.neff * lookup_probability_at(p, s);
     for (uint32_t j = 2; j <= s; ++j) q *= C[j];
     for (uint32_t j = s; j + 2 <= k; ++j) q *= L[j];
     f.qm[s] = q * light_pair;
@@ -204,12 +218,15 @@ Weights production(const SyntheticPath &p) {
       break;
     }
     const bool lookup = cm.append(p.rough(j));
-    // The plugin's radius: r_a, fixed at the first rough vertex.
+    // The plugin's radius: r_a, fixed at the first rough vertex; its lookup probability by class.
     if (lookup && cm.rough_count == 1) area = Mis(float(p.area));
+    const Mis q = Mis(float(lookup_class(cm.rough_count) == kFirstLookup ? p.q_first : p.q_later));
+    const Mis q_b = Mis(float(p.q_later));
     if (lookup && at[j].stored && p.lp > 0) {
       const PhotonAt &ph = at[j];
-      w.wm[j] = merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
-                             mis(area * neff), mis(neff), mis(neff), cm.gamma_sum(k), cm.clamped);
+      w.wm[j] =
+          merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
+                       mis(area * neff * q), mis(neff * q), mis(neff * q_b), cm.gamma_sum(k), cm.clamped);
       w.merged[j] = true;
     }
     if (j == k - 1 && !p.delta(j)) {
@@ -218,7 +235,7 @@ Weights production(const SyntheticPath &p) {
                         cm.clamped);
       w.nee = true;
     }
-    cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, area * neff);
+    cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, area * neff * q);
   }
   w.clamped = cm.clamped;
   w.rescaled = w.rescaled || cm.exp2 != 0;

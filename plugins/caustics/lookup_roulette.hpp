@@ -1,0 +1,78 @@
+// Russian roulette of photon lookups (solver spec 5): a camera path looks photons up at a rough vertex
+// with probability q, and a lookup that happens counts 1/q times. A lookup costs its kd-tree descent
+// whether or not it finds a photon, and behind a diffuse bounce lookups are incoherent (cache misses)
+// and most find little of the image's light. q is chosen per class of vertex (the path's first rough vertex,
+// and the ones after it) to minimise error x time, from what the solver measures: the merges' second moment
+// per class and the work of each class's lookups. The merge technique keeps its density q times the photon
+// density in every MIS weight (merging.cpp, mis.hpp), so the estimate stays unbiased and the weights a
+// partition of unity at any q.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+namespace nimbus::caustics {
+
+// Classes of lookup vertex: the camera path's first rough vertex, and every rough vertex after it.
+enum LookupClass : uint32_t { kFirstLookup = 0, kLaterLookup = 1, kLookupClasses = 2 };
+inline LookupClass lookup_class(uint32_t rough_count) {
+  return rough_count <= 1 ? kFirstLookup : kLaterLookup;
+}
+
+// The lowest lookup probability: the second moment is measured from the lookups that happen (q Y^2 per
+// lookup, an unbiased estimate at any q), and below this too few happen in a window to measure it.
+inline constexpr float kMinLookupProbability = 1.0f / 16;
+
+// What the solver measured over the last iterations, per camera path: the relative variance of a sample
+// (relMSE weights, useful_pixels.hpp), the second moment each class's lookups would have at q = 1, the
+// work of everything but the lookups (camera paths and their share of the photon pass) and the work of
+// each class's lookups at its current q.
+struct RouletteSample {
+  double variance = 0;
+  std::array<double, kLookupClasses> second_moment{};
+  double other_work = 0;
+  std::array<double, kLookupClasses> lookup_work{};
+};
+
+class LookupRoulette {
+ public:
+  float probability(LookupClass c) const { return q_[c]; }
+
+  // The probabilities that minimise (V_o + sum M_c / q_c) (W_o + sum q_c w_c), V_o and W_o the variance
+  // and work without lookups, M_c and w_c a class's second moment and work at q = 1: at the optimum
+  // q_c = sqrt(M_c W / (V w_c)), W and V the totals. Each update takes that step from the current totals
+  // (a fixed-point iteration of the optimum), smoothed in log space: the variances are noisy.
+  void update(const RouletteSample &s) {
+    double work = s.other_work;
+    for (double w : s.lookup_work) work += w;
+    if (!(s.variance > 0) || !(work > 0)) return;
+    for (uint32_t c = 0; c < kLookupClasses; ++c) {
+      const double w1 = s.lookup_work[c] / q_[c];  // the class's work at q = 1
+      if (!(w1 > 0)) continue;                     // no lookup happened: nothing learnt
+      const double target = std::sqrt(std::max(0.0, s.second_moment[c]) * work / (s.variance * w1));
+      const float q = float(std::clamp(target, double(kMinLookupProbability), 1.0));
+      q_[c] = std::exp(0.5f * (std::log(q_[c]) + std::log(q)));
+    }
+  }
+
+  template <class Writer>
+  void save(Writer &w) const {
+    w.put(q_);
+  }
+  template <class Reader>
+  bool restore(Reader &r) {
+    std::array<float, kLookupClasses> q{};
+    if (!r.get(q)) return false;
+    for (float v : q)
+      if (!(v >= kMinLookupProbability && v <= 1)) return false;
+    q_ = q;
+    return true;
+  }
+
+ private:
+  std::array<float, kLookupClasses> q_{1.0f, 1.0f};
+};
+
+}  // namespace nimbus::caustics
