@@ -40,7 +40,7 @@ class EnvironmentEmission {
     float luminance = 0, pdf = 0;
   };
   template <class Sampler>
-  void build(Sampler &&sample, uint32_t samples = 16 * kColumns * kRows) {
+  void build(Sampler &&sample, uint32_t samples = 64 * kColumns * kRows) {
     // Per cell, the samples' sums of L / pdf and 1 / pdf: their ratio is the cell's mean luminance
     // (self-normalised importance sampling), whatever the share of samples the cell received.
     std::vector<double> lum(size_t(kColumns) * kRows, 0.0), area(lum.size(), 0.0);
