@@ -14,14 +14,16 @@
 // The density of a direction (or, for the sun, of an origin) is the mixture's: the same function on
 // both sides, so MIS weights remain a partition of unity. A photon whose first vertex is rough is not
 // traced on (photon_tracer.cpp), so the defensive share costs one ray per photon.
-// Environment lights do not emit photons (spec 6.2's pruning comes with light selection), so their
-// P_sel is 0 and no merge technique exists for them.
+//   environment: directions from environment_emission.hpp (the bright parts of the map only; a uniform
+//          map emits nothing, so its P_sel is 0 and no merge technique exists for it), origins as the
+//          sun's on the targets' disk.
 #pragma once
 
 #include <nimbus/lights.h>
 
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include <nimbus/cpp/alias_table.hpp>
@@ -29,6 +31,7 @@
 #include <nimbus/cpp/sampling.hpp>
 
 #include "emission_cone.hpp"
+#include "environment_emission.hpp"
 #include "sharp_targets.hpp"
 
 namespace nimbus::caustics {
@@ -101,9 +104,16 @@ class EmitterSet {
     targets_ = std::move(targets);
     scene_center_ = scene_center, scene_radius_ = scene_radius;
     std::vector<double> w(emitters_.size(), 0.0);
+    environments_.clear();
+    environments_.resize(emitters_.size());
     for (size_t i = 0; i < emitters_.size(); ++i) {
       Emitter &e = emitters_[i];
-      if (e.kind == EmitterKind::Environment) continue;
+      if (e.kind == EmitterKind::Environment) {
+        auto env = build_environment(uint32_t(i));
+        if (!env->emits()) continue;
+        e.power *= float(env->emitted_share());  // the flux of the part that emits photons
+        environments_[i] = std::move(env);
+      }
       if (e.infinite())
         aim_sun(e);
       else
@@ -196,6 +206,11 @@ class EmitterSet {
     const Vec2f d = sample_uniform_disk_concentric(u0, u1);
     return center - w * back + (f.s * d.x + f.t * d.y) * (scene_disk ? scene_radius_ : disk_radius());
   }
+  // The environment light `l`'s photon direction (the photon travels along -dir) from three numbers.
+  EnvironmentEmission::Sample environment_sample(uint32_t l, float u0, float u1, float u2) const {
+    return environments_[l] ? environments_[l]->sample(u0, u1, u2) : EnvironmentEmission::Sample{};
+  }
+
   // The density of origins of the sun `l` for the line through p along w (area measure).
   float sun_pdf_pos(uint32_t l, const Vec3f &p, const Vec3f &w) const {
     const Emitter &e = emitters_[l];
@@ -209,7 +224,8 @@ class EmitterSet {
     const float sel = table_.pmf(l);
     if (!(sel > 0)) return 0;
     const Emitter &e = emitters_[l];
-    if (e.kind == EmitterKind::Environment) return 0;
+    if (e.kind == EmitterKind::Environment)
+      return environments_[l] ? sel * sun_pdf_pos(l, p, w) * environments_[l]->pdf(-w) : 0.0f;
     if (e.infinite()) {
       float pdf_pos = 1, pdf_dir = 1;  // a delta direction: the SDK's convention
       if (!e.delta_direction()) host_pdfs(l, z, n, w, pdf_pos, pdf_dir);
@@ -227,6 +243,18 @@ class EmitterSet {
     float za[3], na[3], wa[3];
     z.store(za), n.store(na), w.store(wa);
     lights_->pdf_emission(host_, l, za, na, wa, &pdf_pos, &pdf_dir);
+  }
+  // The emission density of environment light `l`, from the host's own emission samples of it.
+  std::unique_ptr<EnvironmentEmission> build_environment(uint32_t l) const {
+    auto env = std::make_unique<EnvironmentEmission>();
+    env->build([&](float u0, float u1) {
+      const float ue[4] = {0.5f, 0.5f, u0, u1};  // the direction is the second pair
+      nimbus_light_emission_t es;
+      lights_->sample_emission(host_, l, ue, &es);
+      return EnvironmentEmission::LightDirection{-Vec3f::load(es.dir), luminance(Rgb::load(es.Le)),
+                                                 es.pdf_dir};
+    });
+    return env;
   }
   EmissionCone cone_of(const Emitter &e, const Aim &a, const Vec3f &z) const {
     if (e.kind != EmitterKind::Area) return a.cone;
@@ -318,6 +346,7 @@ class EmitterSet {
   }
 
   std::vector<Emitter> emitters_;
+  std::vector<std::unique_ptr<const EnvironmentEmission>> environments_;  // per light; environments only
   SharpTargets targets_;
   const nimbus_host_t *host_ = nullptr;
   const nimbus_host_lights_v1_t *lights_ = nullptr;

@@ -59,6 +59,16 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
   const float u_mix = next_uniform(rng);
   Vec3f org = Vec3f::load(es.org);
   float pdf_pos = es.pdf_pos, pdf_dir = es.pdf_dir;
+  if (em.kind == EmitterKind::Environment) {
+    // The bright parts of the map only (environment_emission.hpp), not the host's own sampling.
+    const EnvironmentEmission::Sample s =
+        emitters_.environment_sample(light, ue[2], ue[3], next_uniform(rng));
+    if (!(s.pdf > 0)) return;
+    float w[3], L[3];
+    s.dir.store(w);
+    svc_.lights->eval_infinite(h, light, w, L);
+    dir0 = -s.dir, Le = Rgb::load(L), pdf_dir = s.pdf;
+  }
   if (infinite) {
     org = emitters_.emission_origin(light, dir0, u_mix, ue[0], ue[1]);
     pdf_pos = emitters_.sun_pdf_pos(light, org, dir0);
