@@ -45,7 +45,7 @@ echo "== error vs time"
 for spec in default:pt:all one-light:pt:all many-lights:pt:all caustics/diffuse-room:pt:all \
     caustics/sphere-area:pt:all caustics/glasses:lt:covered caustics/sphere-point:lt:covered \
     caustics/cornell-point:lt:covered caustics/ring:lt:covered caustics/interior:lt:covered \
-    caustics/pool:caustics:all; do
+    caustics/envmap:pt:all caustics/pool:caustics:all; do
   IFS=: read -r path ref mode <<<"$spec"
   scene=$(basename "$path")
   extra=() times=$TIMES
