@@ -129,7 +129,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     }
     map_active_ = schedule_.map_active();
     merge_.radius_per_length = radius_per_length(theta_pix_, schedule_.passes());
-    merge_.lookup_probability = {roulette_.probability(kFirstLookup), roulette_.probability(kLaterLookup)};
+    merge_.lookup_probability = roulette_.probabilities();
     return NIMBUS_OK;
   }
 

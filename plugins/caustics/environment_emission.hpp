@@ -2,8 +2,8 @@
 // is e(w) = max(0, L(w) - 2 mu), L the map's luminance and mu its mean over the sphere. A uniform map, and
 // a sky whose peak is below twice its mean, emit nothing (path tracing renders their soft caustics
 // better); a sun, a window or a lamp in an HDRI keeps nearly all its weight while the dim texels lose
-// theirs. The weight is derived from the map alone, through the light's own direction sampler (host
-// sample_incident), so any environment light plugin gets it.
+// theirs. The weight is derived from the map alone, through the light's own emission sampler (host
+// sample_emission), so any environment light plugin gets it.
 //
 // Directions are binned on an equal-area grid of the sphere (rows uniform in z = cos theta, columns
 // uniform in phi), so every cell spans the same solid angle 4 pi / cells and a cell's emission

@@ -39,6 +39,7 @@ struct RouletteSample {
 class LookupRoulette {
  public:
   float probability(LookupClass c) const { return q_[c]; }
+  const std::array<float, kLookupClasses> &probabilities() const { return q_; }
 
   // The probabilities that minimise (V_o + sum M_c / q_c) (W_o + sum q_c w_c), V_o and W_o the variance
   // and work without lookups, M_c and w_c a class's second moment and work at q = 1: at the optimum

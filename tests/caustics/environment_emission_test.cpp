@@ -15,8 +15,6 @@ namespace {
 using test::ChiSquareConfig;
 using test::Pcg32;
 
-float uniform(Pcg32 &rng) { return rng.uniform(); }
-
 // A light whose own sampler is uniform over the sphere, with luminance L(w).
 template <class L>
 auto uniform_sampler(L luminance) {
@@ -53,7 +51,7 @@ TEST(CausticsEnvironmentEmission, BrightLobeIsSampledAsItsPdfSays) {
   cfg.seed = 11;
   const auto result = test::chi_square_test(
       [&](Pcg32 &rng) -> std::optional<Vec3f> {
-        const float u0 = uniform(rng), u1 = uniform(rng), u2 = uniform(rng);
+        const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
         const EnvironmentEmission::Sample s = env.sample(u0, u1, u2);
         if (!(s.pdf > 0)) return std::nullopt;
         return s.dir;
@@ -95,7 +93,7 @@ TEST(CausticsEnvironmentEmission, SunSmallerThanACellKeepsItsWeight) {
     int near_sun = 0, consistent = 0;
     const int n = 20000;
     for (int i = 0; i < n; ++i) {
-      const float u0 = uniform(rng), u1 = uniform(rng), u2 = uniform(rng);
+      const float u0 = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
       const EnvironmentEmission::Sample e = env.sample(u0, u1, u2);
       ASSERT_GT(e.pdf, 0.0f);
       near_sun += dot(e.dir, sun) > std::cos(3.0f * kPi / 180);  // within ~2 cells
