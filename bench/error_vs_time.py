@@ -4,7 +4,8 @@ compares every image with a reference, and writes a CSV and a log-log plot of re
 
     bench/error_vs_time.py scenes/caustics/sphere-area.yaml --integrators pt,caustics \
         --times 5,10,20,40,80 [--reference REF.exr] [--reference-integrator pt --reference-time 1200] \
-        [--covered-only] [--crop X0,Y0,X1,Y1] [--seeds 3] [--out docs/error-vs-time] [--nimbus build/bin/nimbus]
+        [--covered-only] [--crop X0,Y0,X1,Y1] [--brighter-than F] [--seeds 3] [--out docs/error-vs-time] \
+        [--nimbus build/bin/nimbus]
 
 Without --reference, the reference is rendered first, as two independent halves (seeds 1000 and 1001),
 each with --reference-integrator for --reference-time seconds, and kept next to the CSV with the commands
@@ -52,7 +53,9 @@ def relmse(test, ref, mask, scale=None):
     return float(((test[keep] - ref[keep]) ** 2 / (scale[keep] ** 2 + 0.01)).mean())
 
 
-def region_mask(ref, covered_only, crop):
+def region_mask(ref, covered_only, crop, brighter_than=None):
+    """The pixels compared: all, or those --covered-only and --crop keep; with brighter_than F, only
+    those of them whose reference luminance exceeds F times the region's median (a caustic's own pixels)."""
     mask = np.ones(ref.shape[:2], dtype=bool)
     if covered_only:
         # A pixel counts when its whole neighbourhood is covered: a pixel on a glass or mirror silhouette
@@ -68,6 +71,9 @@ def region_mask(ref, covered_only, crop):
         box = np.zeros_like(mask)
         box[y0:y1, x0:x1] = True
         mask &= box
+    if brighter_than:
+        lum = ref @ np.array([0.2126, 0.7152, 0.0722])
+        mask &= lum > brighter_than * np.median(lum[mask])
     return mask
 
 
@@ -83,6 +89,8 @@ def main():
     ap.add_argument("--reference-time", type=float, default=1200)
     ap.add_argument("--covered-only", action="store_true", help="only the pixels the reference covers")
     ap.add_argument("--crop", help="X0,Y0,X1,Y1: only this pixel rectangle")
+    ap.add_argument("--brighter-than", type=float,
+                    help="F: only the pixels whose reference luminance exceeds F x the region's median")
     ap.add_argument("--out", default="docs/error-vs-time")
     ap.add_argument("--nimbus", default="build/bin/nimbus")
     args = ap.parse_args()
@@ -116,7 +124,7 @@ def main():
                             f"commit: {commit}; used by error-vs-time.csv\n")
         halves = [read_rgb(r) for r in refs]
         ref_image = sum(halves) / len(halves)
-        mask = region_mask(ref_image, args.covered_only, crop)
+        mask = region_mask(ref_image, args.covered_only, crop, args.brighter_than)
         ref_var = 0.0
         if len(halves) == 2:
             ref_var = relmse(halves[0], halves[1], mask, scale=ref_image) / 4
