@@ -45,6 +45,8 @@ constexpr const char *kHelp =
     "  --integrator ID        integrator plugin (overrides the scene; default caustics), e.g. pt, nimbus.pt\n"
     "  --light-sampler ID     light sampler plugin (default: nimbus.lights.tree above 8 lights,\n"
     "                         nimbus.lights.power otherwise)\n"
+    "  --guide ID|none        guiding plugin (default: the integrator's own, e.g. nimbus.guide.metropolis\n"
+    "                         for the caustics solver)\n"
     "  --filter NAME          pixel filter: box, gaussian, blackman-harris (overrides the scene)\n"
     "  --region x0,y0,x1,y1   render only this pixel rectangle (crop window); the rest stays black\n"
     "  --NAME VALUE           an option the integrator declares (`nimbus plugins --options ID` lists\n"
@@ -160,6 +162,9 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
     } else if (k == "--light-sampler") {
       if (!value(v) || v.empty()) return "--light-sampler: expected a plugin id";
       a.options.light_sampler = v;
+    } else if (k == "--guide") {
+      if (!value(v) || v.empty()) return "--guide: expected a plugin id or 'none'";
+      a.options.guide = v;
     } else if (k == "--integrator") {
       if (!value(v) || v.empty()) return "--integrator: expected a plugin id";
       a.options.integrator = v;

@@ -7,6 +7,36 @@
 #include "loader/plugin_status.hpp"
 
 namespace nimbus {
+namespace {
+
+// Binds the guide the job asks for (RenderJob::guide_for). A guide serves rev 2 (photon paths in primary
+// sample space, SDK 1.5) or rev 1; the integrator fetches whichever it drives.
+Status bind_guide(PluginRegistry &registry, const RenderJob &job, const nimbus_host_t *host,
+                  BoundPlugins &p) {
+  const std::string id = job.guide_for(p.integrator.record().features);
+  if (id.empty()) return Ok{};
+  auto guide = registry.instantiate(id, NIMBUS_KIND_GUIDING, host);
+  if (!guide) {
+    if (job.guide_named()) return Error{job.scene->path + ": guide: " + guide.error().message};
+    p.notice =
+        "integrator '" + p.integrator.id() + "' renders without its default guide: " + guide.error().message;
+    return Ok{};
+  }
+  const nimbus_plugin_t *g = guide.value().get();
+  const auto *v2 = static_cast<const nimbus_guiding_v2_t *>(g->get_interface(g, NIMBUS_IFACE_GUIDING, 2));
+  const auto *v1 = static_cast<const nimbus_guiding_v1_t *>(g->get_interface(g, NIMBUS_IFACE_GUIDING, 1));
+  // Every rev 2 member came with rev 2, and rev 1's with 1.0: a smaller table is not one.
+  if (v2 && v2->struct_size < sizeof(nimbus_guiding_v2_t)) v2 = nullptr;
+  if (v1 && v1->struct_size < sizeof(nimbus_guiding_v1_t)) v1 = nullptr;
+  if (!v1 && !v2)
+    return Error{"plugin '" + id + "' does not provide " + NIMBUS_IFACE_GUIDING +
+                 "@2 or @1 (complete tables)"};
+  p.guide = std::move(guide).value();
+  p.guide_v1 = v1, p.guide_v2 = v2;
+  return Ok{};
+}
+
+}  // namespace
 
 Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &job, uint32_t light_count,
                                     const nimbus_host_t *host) {
@@ -24,6 +54,7 @@ Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &j
   if (!ls) return ls.error();
   p.it = it.value();
   p.ls = ls.value();
+  if (Status s = bind_guide(registry, job, host, p); !s) return s.error();
   std::vector<OptionRequest> requests;
   for (const auto &o : job.integrator_options) requests.push_back({o.name, o.value, o.where, o.hint});
   auto options = resolve_options(p.integrator.id(), p.integrator.record().options, requests);
@@ -42,6 +73,11 @@ Status prepare_plugins(const BoundPlugins &p, const RenderJob &job, const World 
   scene_info.scene_radius = world.geometry->sphere_radius();
   if (nimbus_status_t s = p.ls->prepare(p.sampler.get(), &scene_info); s != NIMBUS_OK)
     return Error{"light sampler '" + p.sampler.id() + "' failed to prepare: " + status_text(s)};
+  if (p.guide.get()) {
+    const auto prepare = p.guide_v2 ? p.guide_v2->prepare : p.guide_v1->prepare;
+    if (nimbus_status_t s = prepare(p.guide.get(), &scene_info); s != NIMBUS_OK)
+      return Error{"guide '" + p.guide.id() + "' failed to prepare: " + status_text(s)};
+  }
 
   std::vector<nimbus_option_t> opts;
   for (const auto &[k, v] : p.options) opts.push_back({k.c_str(), v.c_str()});
@@ -55,6 +91,8 @@ Status prepare_plugins(const BoundPlugins &p, const RenderJob &job, const World 
   setup.options = opts.data();
   setup.light_sampler = p.sampler.get();
   setup.light_sampler_iface = p.ls;
+  setup.guide = p.guide.get();
+  setup.guide_iface = p.guide_v1;
   if (nimbus_status_t s = p.it->prepare(p.integrator.get(), &setup); s != NIMBUS_OK)
     return Error{"integrator '" + p.integrator.id() + "' failed to prepare: " + status_text(s)};
   return Ok{};

@@ -25,7 +25,7 @@ nimbus_status_t append(const nimbus_state_writer_t *w, const void *bytes, uint64
 }  // namespace
 
 PluginStates::PluginStates(const BoundPlugins &plugins) {
-  for (const PluginHandle *h : {&plugins.integrator, &plugins.sampler}) {
+  for (const PluginHandle *h : {&plugins.integrator, &plugins.sampler, &plugins.guide}) {
     const nimbus_plugin_t *p = h->get();
     if (!p) continue;
     const auto *t =

@@ -7,12 +7,12 @@
 namespace nimbus {
 
 RenderCheckpoint::RenderCheckpoint(const RenderJob &job, const std::string &integrator_id,
-                                   const std::string &sampler_id,
+                                   const std::string &sampler_id, const std::string &guide_id,
                                    const std::vector<std::pair<std::string, std::string>> &integrator_options)
     : path_(job.checkpoint_path), interval_(job.checkpoint_interval_seconds), resume_(job.resume) {
   info_.seed = job.seed;
   info_.integrator = integrator_id;
-  info_.fingerprint = job.fingerprint(integrator_id, sampler_id, integrator_options);
+  info_.fingerprint = job.fingerprint(integrator_id, sampler_id, integrator_options, guide_id);
 }
 
 Status RenderCheckpoint::restore_or_warn(Film &film, const MessageFn &warn) {

@@ -23,6 +23,7 @@ class RenderCheckpoint {
 
   // The checkpoint for `job` rendered by the bound plugins (their ids go into its fingerprint).
   RenderCheckpoint(const RenderJob &job, const std::string &integrator_id, const std::string &sampler_id,
+                   const std::string &guide_id,
                    const std::vector<std::pair<std::string, std::string>> &integrator_options);
 
   // Resuming: the film's sums, iteration count and non-finite count from the file (or why they cannot

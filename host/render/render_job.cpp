@@ -39,8 +39,18 @@ std::string RenderJob::light_sampler_for(uint32_t light_count) const {
   return light_count > kTreeLightThreshold ? "nimbus.lights.tree" : "nimbus.lights.power";
 }
 
+std::string RenderJob::guide_for(const std::vector<std::string> &features) const {
+  if (guide == "none") return {};
+  if (!guide.empty()) return guide;
+  constexpr std::string_view kDefaultGuide = "default-guide=";
+  for (const std::string &f : features)
+    if (f.starts_with(kDefaultGuide)) return f.substr(kDefaultGuide.size());
+  return {};
+}
+
 std::string RenderJob::fingerprint(const std::string &integrator_id, const std::string &light_sampler_id,
-                                   const std::vector<std::pair<std::string, std::string>> &options) const {
+                                   const std::vector<std::pair<std::string, std::string>> &options,
+                                   const std::string &guide_id) const {
   std::set<std::string> element_set(elements.begin(), elements.end());
   if (lightmix) element_set.insert("lightmix");
   std::string element_list, option_list;
@@ -55,6 +65,7 @@ std::string RenderJob::fingerprint(const std::string &integrator_id, const std::
   lines += "\nseed=" + std::to_string(seed);
   lines += "\nintegrator=" + integrator_id + "\nlight_sampler=" + light_sampler_id +
            "\nfilter=" + std::string(filter_name(filter));
+  if (!guide_id.empty()) lines += "\nguide=" + guide_id;
   lines += "\nmax_depth=" + std::to_string(max_depth);
   lines += "\noptions=" + option_list + "\nelements=" + element_list + "\n";
   return lines;
@@ -75,6 +86,7 @@ Expected<RenderJob> resolve_job(const SceneDesc &scene, const RenderOptions &opt
   job.integrator = options.integrator.value_or(r.integrator);
   job.integrator_options = r.options;
   job.light_sampler = !options.light_sampler.empty() ? options.light_sampler : r.light_sampler;
+  job.guide = !options.guide.empty() ? options.guide : r.guide;
   for (const auto *list : {&r.elements, &options.elements})
     for (const std::string &e : *list) {
       if (e == "lightmix")

@@ -30,6 +30,8 @@ struct RenderOptions {
   std::string ocio_config;                // empty = default lookup
   // Empty: nimbus.lights.tree above kTreeLightThreshold lights, nimbus.lights.power otherwise.
   std::string light_sampler;
+  // A guiding plugin id, "none", or empty: the scene's, else the integrator's default (RenderJob::guide_for).
+  std::string guide;
   // Checkpoints (film/checkpoint.hpp): written between iterations every checkpoint_interval_seconds (<= 0:
   // none on the way) and whenever the loop stops, and kept after the final image so that a finished
   // render can be extended. Empty path: `<output_exr>.ckpt`.
@@ -67,6 +69,7 @@ struct RenderJob {
   // The integrator's options as the scene and command line set them (checked once it is bound).
   std::vector<RenderDesc::OptionSetting> integrator_options;
   std::string light_sampler;  // a plugin id; empty: chosen by light count (light_sampler_for)
+  std::string guide;          // a plugin id, "none", or empty: the integrator's default (guide_for)
   // Film elements besides beauty, in the order requested (scene first), without "lightmix", which asks
   // for one layer per light group instead.
   std::vector<std::string> elements;
@@ -80,14 +83,21 @@ struct RenderJob {
 
   // The light sampler to bind for a world of `light_count` lights.
   std::string light_sampler_for(uint32_t light_count) const;
+  // The guide to bind for an integrator whose descriptor lists `features`: the job's, else the one the
+  // integrator names by the feature "default-guide=ID"; empty for none ("none" asks for none).
+  std::string guide_for(const std::vector<std::string> &features) const;
+  // Whether the job itself names the guide (then a missing plugin is an error, not a notice).
+  bool guide_named() const { return !guide.empty() && guide != "none"; }
 
   // What the film's sums depend on, one "key=value" per line; a checkpoint resumes only into a render
   // with the same lines (read_checkpoint names those that differ). The scene's text and every file the
   // parser read for it are hashed (SceneDesc::sources), so any edit to them counts; the other lines catch
   // what the command line can change without editing a file. The ids are those of the bound plugins.
-  // `options`: the integrator's options as resolved against its declarations.
+  // `options`: the integrator's options as resolved against its declarations. `guide_id`: the bound
+  // guide's, empty without one (then the fingerprint has no guide line).
   std::string fingerprint(const std::string &integrator_id, const std::string &light_sampler_id,
-                          const std::vector<std::pair<std::string, std::string>> &options) const;
+                          const std::vector<std::pair<std::string, std::string>> &options,
+                          const std::string &guide_id = {}) const;
 };
 
 // Resolves and checks the job; `scene` must outlive it. Errors name what is inconsistent.

@@ -43,11 +43,12 @@ Status set_up_film(Film &film, const RenderJob &job, const PluginHandle &integra
 }
 
 Status write_outputs(const RenderJob &job, const Film &film, const RenderFacts &facts) {
-  const std::vector<std::pair<std::string, std::string>> smeta = {
+  std::vector<std::pair<std::string, std::string>> smeta = {
       {"version", NIMBUS_VERSION_STRING},     {"integrator", facts.integrator},
       {"light_sampler", facts.light_sampler}, {"scene", job.scene->path},
       {"seed", std::to_string(job.seed)},  // exact for any 64-bit seed
       {"stopped_by", facts.stopped_by}};
+  if (!facts.guide.empty()) smeta.push_back({"guide", facts.guide});
   std::vector<std::pair<std::string, double>> nmeta = {{"iterations", double(facts.iterations)},
                                                        {"seconds", facts.seconds},
                                                        {"threads", double(facts.threads)},

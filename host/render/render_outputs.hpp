@@ -28,6 +28,7 @@ Status set_up_film(Film &film, const RenderJob &job, const PluginHandle &integra
 // What the EXR's metadata says about the render, besides the job.
 struct RenderFacts {
   std::string integrator, light_sampler;  // plugin ids
+  std::string guide;                      // the bound guide's id, empty without one
   std::string stopped_by;                 // error, cancel, target_error, iterations or time
   uint64_t iterations = 0;
   double seconds = 0;  // of all the iterations in the image, over every resumed session

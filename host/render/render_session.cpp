@@ -22,6 +22,7 @@ RenderFacts facts_of(const RenderJob &job, const BoundPlugins &plugins, RunState
   RenderFacts f;
   f.integrator = plugins.integrator.id();
   f.light_sampler = plugins.sampler.id();
+  f.guide = plugins.guide.id();
   f.stopped_by = loop.stopped_by(job.stop);
   f.iterations = loop.done;
   f.seconds = previous_seconds + loop.seconds;
@@ -55,6 +56,7 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   auto bound = bind_plugins(registry, job, world.lights.count(), services.host());
   if (!bound) return bound.error();
   const BoundPlugins &plugins = bound.value();
+  if (!plugins.notice.empty() && message) message(NIMBUS_LOG_WARNING, plugins.notice);
   // The sampler builds its tables, the integrator registers its elements; then the film allocates exactly
   // what was requested.
   if (Status s = prepare_plugins(plugins, job, world, run.worker_count); !s) return s.error();
@@ -65,7 +67,8 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
     return s.error();
 
   // Restore the sums before the first iteration, or warn before replacing someone's work.
-  RenderCheckpoint checkpoint(job, plugins.integrator.id(), plugins.sampler.id(), plugins.options);
+  RenderCheckpoint checkpoint(job, plugins.integrator.id(), plugins.sampler.id(), plugins.guide.id(),
+                              plugins.options);
   const PluginStates states(plugins);
   checkpoint.keep_plugin_states(&states);
   if (Status s = checkpoint.restore_or_warn(film, message); !s) return s.error();

@@ -15,9 +15,9 @@ constexpr int64_t kMaxResolution = 16384;
 constexpr int64_t kMaxDepth = 1024;
 
 // The render section's own keys; any other key is an option of the bound integrator.
-const std::vector<std::string_view> kRenderKeys{"resolution", "iterations", "time",         "target_error",
-                                                "seed",       "max_depth",  "integrator",   "elements",
-                                                "filter",     "region",     "light_sampler"};
+const std::vector<std::string_view> kRenderKeys{"resolution", "iterations", "time",          "target_error",
+                                                "seed",       "max_depth",  "integrator",    "elements",
+                                                "filter",     "region",     "light_sampler", "guide"};
 
 // [x0, y0, x1, y1] in pixels, half-open ([x0, x1) x [y0, y1)), inside the image. Checked against the
 // resolution of the same section, so the order of the keys does not matter.
@@ -80,6 +80,7 @@ RenderDesc read_render(const YamlValue &section) {
   if (auto v = m.get("region")) read_region(*v, r);
   // A plugin id; whether such a plugin exists is only known once plugins are loaded.
   if (auto v = m.get("light_sampler")) r.light_sampler = v->nonempty_string();
+  if (auto v = m.get("guide")) r.guide = v->nonempty_string();
   return r;
 }
 

@@ -44,6 +44,7 @@ struct RenderDesc {
   // Render region (crop window) in pixels, [x0, x1) x [y0, y1); empty (all zero) = the whole image.
   uint32_t region[4] = {0, 0, 0, 0};
   std::string light_sampler;  // empty: the host's choice
+  std::string guide;          // a guiding plugin id, "none", or empty: the integrator's default guide
 };
 
 struct CameraDesc {

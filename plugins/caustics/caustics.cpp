@@ -26,7 +26,9 @@ namespace nimbus::caustics {
 namespace {
 
 const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, "nimbus.host.tasks@1", nullptr};
-const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix", nullptr};
+// The host binds the Metropolis photon guide unless the scene names another or none (SDK 1.5).
+const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix",
+                                 "default-guide=nimbus.guide.metropolis", nullptr};
 const nimbus_option_decl_t kOptions[] = {
     {"caustics", NIMBUS_OPTION_SWITCH, 0, "on", nullptr,
      "caustics by photon merging; off renders exactly what nimbus.pt renders"}};
@@ -60,6 +62,16 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     const char *caustics = sdk::option_value(setup, "caustics");
     enabled_ = !caustics || std::strcmp(caustics, "off") != 0;
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
+    seed_ = setup.seed;
+    guide_ = {};
+    if (setup.guide) {
+      const auto *t = static_cast<const nimbus_guiding_v2_t *>(
+          setup.guide->get_interface(setup.guide, NIMBUS_IFACE_GUIDING, 2));
+      if (t && t->struct_size >= sizeof(nimbus_guiding_v2_t))
+        guide_ = {setup.guide, t};
+      else
+        log(NIMBUS_LOG_WARNING, "the bound guide has no nimbus.iface.guiding@2: photons are not guided");
+    }
     float center[3];
     scene_radius_ = services().scene->bounding_sphere(host().get(), center);
     scene_center_ = Vec3f::load(center);
@@ -82,6 +94,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     region_pixels_.resize(info.worker_count);
     lookup_radii_.resize(info.worker_count);
     tallies_.resize(info.worker_count);
+    marks_.resize(info.worker_count);
+    importance_ = pass_importance_ = ImportanceMap(scene_center_, scene_radius_);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
     const bool caustics_can_form = emitters_.emits_photons() && !emitters_.targets().empty();
@@ -119,13 +133,15 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       PhotonPass::Result result;
       if (nimbus_status_t s = photon_pass(schedule_.passes() + 1, paths, map_reach_, result); s != NIMBUS_OK)
         return s;
-      stats_.photon_paths += result.paths;
+      stats_.photon_paths += result.traced;
+      stats_.proposals += result.proposals, stats_.accepted += result.accepted;
+      stats_.guided_passes += result.importance_ratio > 0 ? 1 : 0;
       stats_.photons += pass_.map().size();
       stats_.photon_bytes += pass_.map().bytes();
       ++stats_.passes;
       useful_.map_changed();
       stats_.photon_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      schedule_.pass_done(iteration, merge_.map_paths, pass_.map().size());
+      schedule_.pass_done(iteration, result.traced, pass_.map().size());
     }
     map_active_ = schedule_.map_active();
     merge_.radius_per_length = radius_per_length(theta_pix_, schedule_.passes());
@@ -137,7 +153,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   void sample(const nimbus_thread_ctx_t &ctx, uint32_t x, uint32_t y, nimbus_rng_t &rng,
               CausticsRecord &rec) {
     if (map_active_) {
-      MergingPath path(merge_, lookup_radii_[ctx], tallies_[ctx], mix64(rng.state ^ rng.inc));
+      MergingPath path(merge_, lookup_radii_[ctx], tallies_[ctx], guide_ ? &marks_[ctx] : nullptr,
+                       importance_, mix64(rng.state ^ rng.inc));
       trace(ctx, x, y, rng, rec, path);
     } else if (classify_) {
       ClassifyingPath path(emitters_, services().bsdf, host().get());
@@ -161,6 +178,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
 
   nimbus_status_t end_iteration(uint64_t iteration) override {
     if (!armed_) return NIMBUS_OK;
+    for (ImportanceMarks &m : marks_) importance_.merge(m);
     // Camera paths of this iteration: the render region's pixels (tiles cover only the region).
     uint64_t pixels = 0;
     for (uint64_t &p : region_pixels_) pixels += p, p = 0;
@@ -203,6 +221,12 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       // Camera paths whose MIS weights met an overflow (mis.hpp): 0 in any sane scene.
       progress_->stat_add(h, "caustics_mis_clamped", double(stats_.mis_clamped));
       progress_->stat_add(h, "caustics_photon_ratio", schedule_.photon_ratio());
+      // Photon guiding (spec 6.3): passes whose paths a guide chose, its proposals' acceptance and the
+      // importance map's marked cells.
+      progress_->stat_add(h, "caustics_guided_passes", double(stats_.guided_passes));
+      progress_->stat_add(h, "caustics_guide_acceptance",
+                          stats_.proposals > 0 ? double(stats_.accepted) / double(stats_.proposals) : 0.0);
+      progress_->stat_add(h, "caustics_importance_cells", double(importance_.cells()));
       // The lookup roulette's final probabilities (lookup_roulette.hpp).
       progress_->stat_add(h, "caustics_lookup_probability_first", roulette_.probability(kFirstLookup));
       progress_->stat_add(h, "caustics_lookup_probability_later", roulette_.probability(kLaterLookup));
@@ -225,6 +249,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     w.put_array(std::as_const(radii).counts());
     useful_.save(w);
     roulette_.save(w);
+    importance_.save(w), pass_importance_.save(w);
     w.put(stats_);
     return NIMBUS_OK;
   }
@@ -242,13 +267,15 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     RadiusHistogram radii;
     UsefulPixels useful = useful_;
     LookupRoulette roulette;
+    ImportanceMap importance = importance_, pass_importance = pass_importance_;
     Stats stats;
     if (!(schedule.restore(r) && r.get(work) && r.get(request) && r.get(reach) &&
-          r.get_array(radii.counts()) && useful.restore(r) && roulette.restore(r) && r.get(stats) &&
-          r.done()))
+          r.get_array(radii.counts()) && useful.restore(r) && roulette.restore(r) && importance.restore(r) &&
+          pass_importance.restore(r) && r.get(stats) && r.done()))
       return NIMBUS_E_INVALID_ARG;
     schedule_ = schedule, photon_work_ = work, map_request_ = request, map_reach_ = reach;
     roulette_ = roulette;
+    importance_ = std::move(importance), pass_importance_ = std::move(pass_importance);
     bool first = true;
     for (RadiusHistogram &h : lookup_radii_) {
       h.clear();
@@ -265,8 +292,20 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     const nimbus_host_t *h = host().get();
     if (progress_) progress_->report(h, 0, paths, "photons");
     const PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth());
-    if (nimbus_status_t s = pass_.run(tracer, tasks_, h, pass, paths, filter_reach, result); s != NIMBUS_OK)
+    // Guided once some lookup has marked where the camera needs photons; a resumed render's rebuild finds
+    // the frozen map its pass used in the saved state.
+    if (!rebuild_map_) pass_importance_ = guide_ ? importance_ : ImportanceMap(scene_center_, scene_radius_);
+    if (guide_ && !pass_importance_.empty()) {
+      if (nimbus_status_t s = pass_.run_guided(tracer, guide_, pass_importance_, tasks_, h, seed_, pass,
+                                               paths, filter_reach, result);
+          s != NIMBUS_OK) {
+        log(NIMBUS_LOG_ERROR, "the photon guide failed; its photon pass could not be completed");
+        return s;
+      }
+    } else if (nimbus_status_t s = pass_.run(tracer, tasks_, h, pass, paths, filter_reach, result);
+               s != NIMBUS_OK) {
       return s;
+    }
     if (progress_) progress_->report(h, paths, paths, "photons");
     merge_ = {h,
               services().bsdf,
@@ -276,9 +315,11 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
               ids(),
               max_depth(),
               result.paths,
+              &pass_importance_,
+              result.importance_ratio,
               merge_.radius_per_length,
               scene_radius_};
-    photon_work_ = result.paths > 0 ? double(result.work) / double(result.paths) : 0.0;
+    photon_work_ = result.traced > 0 ? double(result.work) / double(result.traced) : 0.0;
     return NIMBUS_OK;
   }
 
@@ -288,6 +329,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   sdk::PerWorker<RadiusHistogram> lookup_radii_;  // radii of the lookups since the last photon pass
   sdk::PerWorker<uint64_t> region_pixels_;        // pixels rendered this iteration (per worker)
   sdk::PerWorker<CameraTally> tallies_;           // camera-path counts while a map is active
+  sdk::PerWorker<ImportanceMarks> marks_;         // lookups that found light since the last iteration
 
   bool enabled_ = true;    // the `caustics` switch
   bool armed_ = false;     // enabled, and some light emits photons towards sharp geometry
@@ -303,14 +345,19 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   float map_reach_ = 0;       // and its occupancy filter's reach
   bool rebuild_map_ = false;  // resumed with a map active: trace it again before the next camera pass
   MergeContext merge_;        // what camera passes read while the map is active
+  uint64_t seed_ = 0;
+  GuideBinding guide_;             // the bound guide's rev 2 table, if any
+  ImportanceMap importance_;       // every successful lookup's mark so far (spec 6.3)
+  ImportanceMap pass_importance_;  // the copy the current map's pass was guided by
   bool map_active_ = false;
   UsefulPixels useful_;
   LookupRoulette roulette_;
   // The format of save_state's bytes.
-  static constexpr uint32_t kStateVersion = 2;
+  static constexpr uint32_t kStateVersion = 3;
   struct Stats {
     uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
     uint64_t mis_clamped = 0;
+    uint64_t guided_passes = 0, proposals = 0, accepted = 0;
     double photon_seconds = 0;  // photon tracing and kd-tree builds
   } stats_;
 };

@@ -5,14 +5,15 @@ namespace nimbus::caustics {
 
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
-                         CausticsRecord &rec) {
+                         float neff, CausticsRecord &rec) {
   uint32_t evaluated = 0;
   const float r2 = r * r;
-  const float neff = float(mc.map_paths);
-  const float inv_paths = 1.0f / (neff * q);
+  // The photons' power is relative to a uniform path's (guided_pass.cpp), so 1 / N_u normalises it.
+  const float inv_paths = 1.0f / (float(mc.map_paths) * q);
   const Mis m_neff = mis(Mis(neff) * q), eta = mis(kPi * r2 * Mis(neff) * q);
   // The merges at the photon's rough vertices (B) are lookups after the camera path's first rough vertex.
-  const Mis m_neff_b = mis(Mis(neff) * mc.lookup_probability[kLaterLookup]);
+  // B carries each of its vertices' effective counts relative to N_u (guided_pass.cpp).
+  const Mis m_neff_b = mis(Mis(mc.map_paths) * mc.lookup_probability[kLaterLookup]);
   const Vec3f ng = Vec3f::load(ix.ng);
   float wo_arr[3];
   wo.store(wo_arr);

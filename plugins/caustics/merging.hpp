@@ -13,6 +13,7 @@
 
 #include "caustics_record.hpp"
 #include "emitters.hpp"
+#include "importance_map.hpp"
 #include "lookup_roulette.hpp"
 #include "mis.hpp"
 #include "occupancy_filter.hpp"
@@ -31,7 +32,11 @@ struct MergeContext {
   const std::vector<uint32_t> *light_group = nullptr;  // LightMix group of each light
   ElementIds ids;
   uint32_t max_depth = 0;
-  uint64_t map_paths = 0;       // photon paths behind the map (N_eff)
+  uint64_t map_paths = 0;  // N_u: uniform photon paths behind the map
+  // Photon guiding (spec 6.3): the effective photon count at x is N_u (1 + importance_ratio I(x)), I from
+  // the importance map the map's pass used (null, and ratio 0, without guiding).
+  const ImportanceMap *importance = nullptr;
+  double importance_ratio = 0;
   float radius_per_length = 0;  // merge radius per unit path length at the map's pass
   float scene_radius = 1;
   // Lookup probability per class of rough vertex (lookup_roulette.hpp), set before each camera pass.
@@ -48,10 +53,17 @@ struct LookupCost {
 
 // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
 // q: the probability that the path looked up here (the merges count 1/q times, and the merge technique
-// has q times the photon density in their weights).
+// has q times the photon density in their weights). neff: the effective photon count at x_s.
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
-                         CausticsRecord &rec);
+                         float neff, CausticsRecord &rec);
+
+// The effective photon count at x (spec 6.3): N_u, raised where the guide's chains aimed.
+inline float effective_photons(const MergeContext &mc, const Vec3f &x) {
+  const double n = double(mc.map_paths);
+  if (!(mc.importance_ratio > 0) || !mc.importance) return float(n);
+  return float(n * (1.0 + mc.importance_ratio * double(mc.importance->at(x))));
+}
 
 // lp (mis.hpp) of the light a camera path hit, and of the one its NEE sampled: the photon density of
 // the path's last segment, 0 where no photon is emitted that way (then no merge technique exists).
@@ -73,11 +85,13 @@ class MergingPath {
  public:
   static constexpr bool kReversePdfs = true;
 
-  // tally: this worker's counts, which this path adds to.
+  // tally: this worker's counts, which this path adds to. marks: this worker's importance marks (null
+  // when no guide is bound).
   // key: the camera sample's own hash, from which the lookup roulette draws (not from the camera path's
   // random numbers, which stay those of nimbus.pt).
-  MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, CameraTally &tally, uint64_t key)
-      : mc_(mc), radii_(lookup_radii), tally_(tally), key_(key) {}
+  MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, CameraTally &tally,
+              ImportanceMarks *marks, const ImportanceMap &importance, uint64_t key)
+      : mc_(mc), radii_(lookup_radii), tally_(tally), marks_(marks), importance_(importance), key_(key) {}
   ~MergingPath() {
     if (mis_.clamped) ++tally_.mis_clamped;
   }
@@ -104,13 +118,17 @@ class MergingPath {
       radius_ = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
     const LookupClass cls = lookup_class(mis_.rough_count);
     q_ = mc_.lookup_probability[cls];
+    if (lookup_) neff_ = effective_photons(mc_, Vec3f::load(v.ix->p));
     // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
     if (lookup_ && v.segments + 2 <= mc_.max_depth &&
         (q_ >= 1 || float(mix64(key_ ^ v.segments) >> 40) * 0x1p-24f < q_)) {
       radii_.add(radius_);
-      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, rec);
+      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, neff_, rec);
       tally_.lookup_work[cls] += c.work();
       rec.lookup_moment[cls] += q_ * c.light * c.light;
+      // A lookup that found light marks where the camera needs photons (spec 6.3).
+      if (marks_ && c.light > 0)
+        marks_->add(importance_.grid(), Vec3f::load(v.ix->p), radius_, importance_.importance(length_));
     }
   }
 
@@ -131,17 +149,20 @@ class MergingPath {
   void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
                uint32_t segments) {
     mis_.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup_, segments,
-                 kPi * Mis(radius_) * radius_ * Mis(mc_.map_paths) * q_);
+                 kPi * Mis(radius_) * radius_ * Mis(neff_) * q_);
   }
 
  private:
   const MergeContext &mc_;
   RadiusHistogram &radii_;  // this worker's lookup radii
   CameraTally &tally_;
+  ImportanceMarks *marks_;
+  const ImportanceMap &importance_;  // the render's map: its grid and importance rule for marks
   CameraMis mis_;
   float radius_ = 0;     // r_a: fixed at the first rough vertex, used by every lookup (spec 3.5)
   uint64_t key_;         // the lookup roulette's draws: hashes of it and the vertex
   float q_ = 1;          // lookup probability at the current vertex (its merge density's factor)
+  float neff_ = 0;       // effective photon count at the current lookup vertex
   float length_ = 0;     // path length from the lens to the current vertex
   bool lookup_ = false;  // the current vertex looks photons up
 };

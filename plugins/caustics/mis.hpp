@@ -88,17 +88,20 @@ struct PhotonMis {
   Mis A = 0;             // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
   Mis B = 0;             // sum over the stored rough vertices s' further towards the light of
                          // q_M,s' / q_M,s, over the same factors except the radius ratio (included)
-  int exp2 = 0;          // A and B are A * 2^exp2 and B * 2^exp2
+  Mis B_importance = 0;  // the same sum with each term times the importance I(x_s') (photon guiding: the
+                         // merge at s' has the effective photon count N_u (1 + c I(x_s')), spec 6.3)
+  int exp2 = 0;          // A, B and B_importance are each times 2^exp2
   bool b_valid = false;  // some stored rough vertex precedes (B is a sum of >= 1 terms)
 
   float log2_A() const { return stored_log2(A, exp2); }
   float log2_B() const { return stored_log2(B, exp2); }
+  float log2_B_importance() const { return stored_log2(B_importance, exp2); }
 
   // Emission. hittable: BSDF sampling can hit the emitter (area and non-delta infinite lights).
   // cos_e: |cos| at the emitter between its normal and the photon direction (1 for infinite lights).
   void emit(bool hittable, float cos_e, float lp) {
     A = hittable && lp > 0 ? mis(Mis(cos_e) / lp) : 0.0;
-    B = 0;
+    B = B_importance = 0;
     exp2 = 0;
     b_valid = false;
     rescale();
@@ -108,26 +111,31 @@ struct PhotonMis {
     const Mis m = mis(Mis(c_in));
     A /= m;
     B /= m;
+    B_importance /= m;
     rescale();
   }
   // Scattering at the current vertex: c_out = |cos| of the new direction, w_fwd its pdf, w_rev the pdf
   // of the reverse direction (what a camera path would use). E: NEE term of the first vertex (below), 0
   // elsewhere. rough / stored: the vertex's class and whether a photon was stored at it (then the merge
-  // there is a technique for every longer path through it).
-  void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, Mis E) {
+  // there is a technique for every longer path through it). importance: I at the stored vertex.
+  void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, Mis E, float importance = 0) {
     const Mis g = mis(Mis(c_out) / w_fwd), r = mis(Mis(w_rev));
     A = g * (r * A + std::ldexp(E, -exp2));
     if (rough) {
       B = g * (r * B + (stored ? std::ldexp(1.0, -exp2) : 0.0));
+      B_importance = g * (r * B_importance + (stored ? std::ldexp(Mis(importance), -exp2) : 0.0));
       b_valid = b_valid || stored;
     } else {
       B = g * r * B;
+      B_importance = g * r * B_importance;
     }
     rescale();
   }
   void rescale() {
     renormalise(
-        2, [this](uint32_t i) -> Mis & { return i == 0 ? A : B; }, exp2);
+        3, [this](uint32_t i) -> Mis & { return i == 0   ? A
+                                                : i == 1 ? B
+                                                         : B_importance; }, exp2);
   }
 };
 

@@ -47,22 +47,22 @@ nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_ta
   };
   if (nimbus_status_t s = tasks->parallel_for(h, paths, kPhotonPathsPerTask, fn, &job); s != NIMBUS_OK)
     return s;
-  // Concatenate in task order: photon indices never depend on threads.
-  size_t total = 0;
-  uint64_t done = 0;
   result = {};
-  for (const PhotonChunk &c : chunks_) total += c.photons.size(), done += c.paths, result.work += c.work;
-  const sdk::ParallelFor parallel = sdk::host_parallel_for(tasks, h);
-  // The chunks in task order, copied concurrently.
-  photons_.resize(total);
+  for (const PhotonChunk &c : chunks_) result.paths += c.paths, result.work += c.work;
+  result.traced = result.paths;
+  assemble(sdk::host_parallel_for(tasks, h), filter_reach);
+  return NIMBUS_OK;
+}
+
+void PhotonPass::assemble(const sdk::ParallelFor &parallel, float filter_reach) {
+  // Concatenate in task order: photon indices never depend on threads. The chunks are copied concurrently.
   std::vector<size_t> offset(chunks_.size() + 1, 0);
   for (size_t i = 0; i < chunks_.size(); ++i) offset[i + 1] = offset[i] + chunks_[i].photons.size();
+  photons_.resize(offset.back());
   parallel(chunks_.size(), [&](size_t i) {
     std::copy(chunks_[i].photons.begin(), chunks_[i].photons.end(), photons_.begin() + ptrdiff_t(offset[i]));
   });
-  result.paths = done;
   map_.build(photons_, parallel, filter_reach);
-  return NIMBUS_OK;
 }
 
 float PhotonPass::filter_reach(sdk::PerWorker<RadiusHistogram> &lookup_radii) {

@@ -11,11 +11,22 @@
 #include <nimbus/cpp/rng.hpp>
 
 #include "emitters.hpp"
+#include "importance_map.hpp"
 #include "occupancy_filter.hpp"
 #include "photon_map.hpp"
 #include "photon_tracer.hpp"
 
 namespace nimbus::caustics {
+
+// Chains per guided photon pass: fixed, so that the photons do not depend on the thread count.
+inline constexpr uint32_t kGuideChains = 256;
+
+// A guide bound to the render that serves "nimbus.iface.guiding" rev 2 (host-owned).
+struct GuideBinding {
+  const nimbus_plugin_t *plugin = nullptr;
+  const nimbus_guiding_v2_t *iface = nullptr;
+  explicit operator bool() const { return plugin && iface; }
+};
 
 // The i-th path a task of pass `pass` traces in its run [b, e): the run rotated by an offset hashed from
 // the pass and the run, so that a task cut short by its memory guard leaves out different paths (and
@@ -28,14 +39,27 @@ inline uint64_t task_path(uint32_t pass, uint64_t b, uint64_t e, uint64_t i) {
 class PhotonPass {
  public:
   struct Result {
-    uint64_t paths = 0;  // photon paths completed (N_eff of the new map)
-    uint64_t work = 0;   // budget work units (schedule.hpp)
+    uint64_t paths = 0;   // N_u: uniform photon paths completed (the map's photon count per unit density)
+    uint64_t traced = 0;  // photon paths traced, guided proposals included (the budget's count)
+    uint64_t work = 0;    // budget work units (schedule.hpp)
+    // Guided passes (spec 6.3): c = N_m / (N_u b^), so the effective photon count at x is
+    // N_u (1 + c I(x)); 0 without guiding. Chain proposals and those that became a chain state.
+    double importance_ratio = 0;
+    uint64_t proposals = 0, accepted = 0;
   };
 
   // [main-thread] Traces `paths` photon paths of pass `pass` (1-based) and rebuilds the map, with an
   // occupancy filter of reach `filter_reach` (0: none). The same arguments give the same map.
   nimbus_status_t run(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks, const nimbus_host_t *h,
                       uint32_t pass, uint64_t paths, float filter_reach, Result &result);
+
+  // [main-thread] The same, with the paths chosen by `guide`'s chains on the target of `importance` (a
+  // frozen copy that camera passes read with this map): the photons get the mixture weights of spec 6.3
+  // and their B its effective counts. seed: the render's. Fails with the guide's status if a chain fails.
+  nimbus_status_t run_guided(const PhotonTracer &tracer, const GuideBinding &guide,
+                             const ImportanceMap &importance, const nimbus_host_tasks_v1_t *tasks,
+                             const nimbus_host_t *h, uint64_t seed, uint32_t pass, uint64_t paths,
+                             float filter_reach, Result &result);
 
   // [main-thread] The occupancy filter's reach for the next map: the radius 95 % of the lookups since the
   // last pass stayed within (radii only shrink from pass to pass), so nearly every lookup can ask the
@@ -47,6 +71,9 @@ class PhotonPass {
   void release();
 
  private:
+  // The chunks' photons in chunk order, then the map.
+  void assemble(const sdk::ParallelFor &parallel, float filter_reach);
+
   std::vector<PhotonChunk> chunks_;  // one buffer per task
   std::vector<Photon> photons_;      // the tasks' photons in task order
   PhotonKdTree map_;

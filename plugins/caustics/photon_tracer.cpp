@@ -29,26 +29,35 @@ nimbus_interaction_t emission_point(uint32_t light, const nimbus_light_emission_
 // sharp one, termination after two consecutive rough vertices (spec 4), MIS state per photon.
 void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t paths, uint32_t pass,
                          PhotonChunk &out) const {
-  const nimbus_host_t *h = h_;
   nimbus_rng_t rng;
-  svc_.rng->derive(h, path, pass, kStreamPhoton, &rng);
+  svc_.rng->derive(h_, path, pass, kStreamPhoton, &rng);
+  PhotonSamples samples(rng);
+  trace(ctx, samples, path, paths, nullptr, out);
+}
+
+float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples, uint64_t path,
+                          uint64_t paths, const ImportanceMap *importance, PhotonChunk &out) const {
+  const nimbus_host_t *h = h_;
+  float target = 0;
   float sel = 0;
-  const int64_t li = emitters_.pick(next_uniform(rng), &sel);
-  if (li < 0 || !(sel > 0)) return;
+  const int64_t li = emitters_.pick(samples.next(), &sel);
+  if (li < 0 || !(sel > 0)) return target;
   const uint32_t light = uint32_t(li);
   const Emitter &em = emitters_[light];
-  float ue[4] = {next_uniform(rng), next_uniform(rng), next_uniform(rng), next_uniform(rng)};
+  float ue[4] = {samples.next(), samples.next(), samples.next(), samples.next()};
   // The light's main pair of numbers (position for the sun, environment and area lights; direction
   // for point and spot lights) comes stratified along the pass (emission_strata.hpp).
   {
-    const float xi = next_uniform(rng), j0 = next_uniform(rng), j1 = next_uniform(rng);
-    const Vec2f s = emission_sample(path, paths, xi, j0, j1);
-    const int first = em.infinite() || em.kind == EmitterKind::Area ? 0 : 2;
-    ue[first] = s.x, ue[first + 1] = s.y;
+    const float xi = samples.next(), j0 = samples.next(), j1 = samples.next();
+    if (samples.from_stream()) {
+      const Vec2f s = emission_sample(path, paths, xi, j0, j1);
+      const int first = em.infinite() || em.kind == EmitterKind::Area ? 0 : 2;
+      ue[first] = s.x, ue[first + 1] = s.y;
+    }
   }
   nimbus_light_emission_t es;
   svc_.lights->sample_emission(h, light, ue, &es);
-  if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0)) return;
+  if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0)) return target;
   const bool delta_pos = es.flags & NIMBUS_LIGHT_DELTA_POSITION;
   const bool infinite = es.flags & NIMBUS_LIGHT_INFINITE;
   const Vec3f n_e = Vec3f::load(es.n);
@@ -56,14 +65,13 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
   Rgb Le = Rgb::load(es.Le);
   // The projection map (emitters.hpp) picks where the photon goes: a cone towards sharp geometry or the
   // light's own emission (finite lights), the targets' disk or the scene's (the sun).
-  const float u_mix = next_uniform(rng);
+  const float u_mix = samples.next();
   Vec3f org = Vec3f::load(es.org);
   float pdf_pos = es.pdf_pos, pdf_dir = es.pdf_dir;
   if (em.kind == EmitterKind::Environment) {
     // The bright parts of the map only (environment_emission.hpp), not the host's own sampling.
-    const EnvironmentEmission::Sample s =
-        emitters_.environment_sample(light, ue[2], ue[3], next_uniform(rng));
-    if (!(s.pdf > 0)) return;
+    const EnvironmentEmission::Sample s = emitters_.environment_sample(light, ue[2], ue[3], samples.next());
+    if (!(s.pdf > 0)) return target;
     float w[3], L[3];
     s.dir.store(w);
     svc_.lights->eval_infinite(h, light, w, L);
@@ -80,7 +88,7 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
   const float cos_e = delta_pos || infinite ? 1.0f : std::abs(dot(n_e, dir0));
   const float lp = sel * pdf_pos * pdf_dir;
   Rgb beta = Le * (cos_e / lp);
-  if (is_black(beta) || !is_finite(beta)) return;
+  if (is_black(beta) || !is_finite(beta)) return target;
   PhotonMis mis_state;
   mis_state.emit(em.hittable(), cos_e, lp);
 
@@ -96,12 +104,12 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
     nimbus_hit_t hit;
     svc_.scene->intersect(h, &ctx, &ray, &hit, 1);
     out.work += kRayWork;
-    if (hit.geom_id == NIMBUS_NONE) return;
+    if (hit.geom_id == NIMBUS_NONE) return target;
     nimbus_interaction_t ix;
     svc_.scene->interaction(h, &ray, &hit, &ix);
     const Vec3f wo = -Vec3f::load(ray.dir), ng = Vec3f::load(ix.ng);
     const float c_in = std::abs(dot(ng, wo));
-    if (!(c_in > 0)) return;
+    if (!(c_in > 0)) return target;
     mis_state.arrive(c_in);
     const nimbus_lobe_t lobes = svc_.bsdf->lobes(h, &ix);
     const bool rough = !is_sharp(svc_.bsdf, h_, ix, lobes);
@@ -109,14 +117,17 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
     // need a sharp first photon vertex). Its only photons would come after a rough-sharp-rough
     // sequence, which path tracing samples with NEE at that first vertex, as for directions outside
     // the emission target; tracing them on would cost a large share of the photon vertices.
-    if (rough && depth == 1) return;
+    if (rough && depth == 1) return target;
     const bool smooth_only = !has(lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
     Mis nee_term = 0;
     if (depth == 1 && !smooth_only) nee_term = first_vertex_nee(ix, light, em, es, wo, lp, c_in);
 
     // Store after a sharp bounce; a photon of depth d completes paths of >= d + 1 segments.
     const bool stored = rough && had_sharp && depth + 1 <= max_depth_;
+    float vertex_importance = 0;
     if (stored) {
+      if (importance) vertex_importance = importance->at(Vec3f::load(ix.p));
+      target = std::max(target, vertex_importance);
       Photon ph;
       std::memcpy(ph.p, ix.p, sizeof(ph.p));
       ph.dir = encode_octahedral(wo);
@@ -124,31 +135,34 @@ void PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t
       beta.store(ph.power);
       ph.A = mis_state.log2_A();
       ph.B = mis_state.log2_B();
+      ph.B_importance = mis_state.log2_B_importance();
       ph.bits = Photon::pack(depth, prev_rough, mis_state.b_valid, light);
       out.photons.push_back(ph);
       out.work += kPhotonWork;
     }
-    if (rough && prev_rough) return;  // two consecutive rough vertices
-    if (depth == kPhotonMaxVertices) return;
+    if (rough && prev_rough) return target;  // two consecutive rough vertices
+    if (depth == kPhotonMaxVertices) return target;
 
-    float wo_arr[3], u[3] = {next_uniform(rng), next_uniform(rng), next_uniform(rng)};
+    float wo_arr[3], u[3] = {samples.next(), samples.next(), samples.next()};
     wo.store(wo_arr);
     nimbus_bsdf_sample_t bs;
     svc_.bsdf->sample(h, &ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
-    if (!(bs.pdf > 0)) return;
+    if (!(bs.pdf > 0)) return target;
     const Vec3f wi = Vec3f::load(bs.wi);
     const bool delta = has(bs.lobe, NIMBUS_LOBE_SPECULAR);
-    mis_state.scatter(std::abs(dot(ng, wi)), bs.pdf, bs.pdf_rev, rough, stored, delta ? 0.0 : nee_term);
+    mis_state.scatter(std::abs(dot(ng, wi)), bs.pdf, bs.pdf_rev, rough, stored, delta ? 0.0 : nee_term,
+                      vertex_importance);
     const Rgb t = Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(ix.ns))) / bs.pdf);
     // Russian roulette on this bounce's throughput: photon power stays roughly constant.
     const float q = std::min(1.0f, max_component(t));
-    if (!(q > 0) || next_uniform(rng) >= q) return;
+    if (!(q > 0) || samples.next() >= q) return target;
     beta *= t / q;
-    if (is_black(beta) || !is_finite(beta)) return;
+    if (is_black(beta) || !is_finite(beta)) return target;
     prev_rough = rough;
     had_sharp = had_sharp || !rough;
     svc_.scene->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
   }
+  return target;
 }
 
 // Radiance (area) or intensity (point, spot) that finite light `light` emits from es.org along w.

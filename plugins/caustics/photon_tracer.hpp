@@ -13,24 +13,57 @@
 #include <nimbus/nimbus.hpp>
 
 #include "emitters.hpp"
+#include "importance_map.hpp"
 #include "mis.hpp"
 #include "photon_map.hpp"
 #include "schedule.hpp"
 
 namespace nimbus::caustics {
 
-// The output of one photon-pass task; a cache line of its own, since tasks on different workers update
-// their chunks on every path.
+// A photon path a guide's chain traced (guided_pass.cpp): its photons in the chunk and what its weight
+// needs (spec 6.3).
+struct GuidedPath {
+  uint32_t first = 0, count = 0;  // photons [first, first + count) of the chunk
+  float target = 0;               // T
+  bool uniform = false;           // traced as a uniform sample
+  uint64_t multiplicity = 0;      // chain steps credited
+};
+
+// The output of one photon-pass task (or guide chain); a cache line of its own, since tasks on different
+// workers update their chunks on every path.
 struct alignas(sdk::kCacheLineBytes) PhotonChunk {
   std::vector<Photon> photons;
-  uint64_t paths = 0;  // completed paths
-  uint64_t work = 0;   // budget work units (schedule.hpp)
+  std::vector<GuidedPath> guided;  // a chain's paths, in the order traced (guided passes only)
+  uint64_t paths = 0;              // completed paths
+  uint64_t work = 0;               // budget work units (schedule.hpp)
   // Empty for the next pass, keeping the buffers' memory.
-  void reset() { photons.clear(), paths = 0, work = 0; }
+  void reset() { photons.clear(), guided.clear(), paths = 0, work = 0; }
 };
 
 // Random-number stream of photon path p of photon pass j: derive(p, j, kStreamPhoton).
 inline constexpr uint64_t kStreamPhoton = 0x70686f746f6e;  // "photon"
+
+// The numbers a photon path consumes, in a fixed order (emission, then four per vertex): the host's
+// stream of an unguided path, or a guide's primary-sample vector u (spec 6.3), so that a path is a
+// deterministic function of u. kPhotonDims covers the longest path.
+inline constexpr uint32_t kPhotonDims = 10 + 4 * kPhotonMaxVertices;
+class PhotonSamples {
+ public:
+  explicit PhotonSamples(const nimbus_rng_t &rng) : rng_(rng) {}
+  PhotonSamples(const float *u, uint32_t dims) : u_(u), dims_(dims) {}
+  float next() {
+    if (!u_) return next_uniform(rng_);
+    return used_ < dims_ ? u_[used_++] : 0.5f;
+  }
+  // The stream's paths stratify their emission along the pass (emission_strata.hpp); a guide's u is
+  // used as given.
+  bool from_stream() const { return u_ == nullptr; }
+
+ private:
+  nimbus_rng_t rng_{};
+  const float *u_ = nullptr;
+  uint32_t dims_ = 0, used_ = 0;
+};
 
 // Traces photon paths against the scene, reading only state that is fixed during a photon pass.
 class PhotonTracer {
@@ -43,6 +76,11 @@ class PhotonTracer {
   // [render-thread] Photon path `path` of the `paths` of pass `pass` (1-based), into `out`.
   void trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t paths, uint32_t pass,
              PhotonChunk &out) const;
+  // [render-thread] The photon path of `samples` (for the stream's, path `path` of `paths` stratifies the
+  // emission) into `out`. With an importance map, the photons carry B_importance and the return value is
+  // the path's target T: the largest importance at its stored photons (spec 6.3); else 0.
+  float trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples, uint64_t path, uint64_t paths,
+              const ImportanceMap *importance, PhotonChunk &out) const;
 
  private:
   Rgb emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w) const;

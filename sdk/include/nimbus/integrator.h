@@ -31,7 +31,11 @@ typedef struct nimbus_render_setup {
   uint64_t seed;
   const nimbus_option_t *options; /* host-owned until end_render; option_count entries */
   /* The light sampler bound for this render (never NULL) and an optional guide (may be NULL). The
-   * plugins and tables are host-owned until end_render; call them per the tags of their headers. */
+   * plugins and tables are host-owned until end_render; call them per the tags of their headers.
+   * Since 1.5 the host binds the guide the scene names (render.guide, --guide) or else the one the
+   * integrator's descriptor names with the feature "default-guide=<id>", and calls its prepare. An
+   * integrator that drives "nimbus.iface.guiding" rev 2 fetches it through guide->get_interface;
+   * guide_iface is the guide's rev 1 table, or NULL when it has none. */
   const nimbus_plugin_t *light_sampler;
   const nimbus_light_sampler_v1_t *light_sampler_iface; /* host-owned until end_render */
   const nimbus_plugin_t *guide;                         /* host-owned until end_render; may be NULL */
