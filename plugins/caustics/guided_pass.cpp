@@ -4,8 +4,6 @@
 // mixture weight and each photon's B its effective photon counts; photons of paths with weight 0
 // (rejected proposals) are dropped. See photon_pass.hpp.
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 #include "photon_pass.hpp"
 
@@ -49,14 +47,6 @@ double trace_path(void *user, const float *u, uint32_t kind, uint64_t *path) {
 void credit_path(void *user, uint64_t path, uint64_t multiplicity) {
   PhotonChunk &chunk = *static_cast<const ChainTracer *>(user)->chunk;
   if (path < chunk.guided.size()) chunk.guided[path].multiplicity += multiplicity;
-}
-
-// log2(2^b + c 2^b_importance) without overflow: B with every term at its effective photon count
-// (mis.hpp, PhotonMis::B_importance).
-float fold_b(float b, float b_importance, double c) {
-  if (!(c > 0) || b_importance == -std::numeric_limits<float>::infinity()) return b;
-  const double x = double(b), y = double(b_importance) + std::log2(c), m = std::max(x, y);
-  return float(m + std::log2(std::exp2(x - m) + std::exp2(y - m)));
 }
 
 }  // namespace
@@ -139,7 +129,7 @@ nimbus_status_t PhotonPass::run_guided(const PhotonTracer &tracer, const GuideBi
         Photon ph = c.photons[k];
         if (w != 1.0f)
           for (float &channel : ph.power) channel *= w;
-        ph.B = fold_b(ph.B, ph.B_importance, ratio);
+        ph.B = fold_importance(ph.B, ph.B_importance, ph.B_importance2, ratio);
         c.photons[kept++] = ph;
       }
     }

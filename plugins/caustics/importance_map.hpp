@@ -14,7 +14,6 @@
 #include <vector>
 
 #include <nimbus/cpp/math.hpp>
-#include <nimbus/cpp/render_state.hpp>
 #include <nimbus/cpp/rng.hpp>
 
 namespace nimbus::caustics {
@@ -138,22 +137,23 @@ class ImportanceMap {
     return best;
   }
 
-  void save(sdk::StateWriter &w) const {
-    std::vector<uint64_t> keys;
-    std::vector<float> values;
-    cells_.for_each([&](uint64_t k, float v) { keys.push_back(k), values.push_back(v); });
-    w.put(levels_), w.put(uint64_t(keys.size()));
-    w.put_array(std::span<const uint64_t>(keys)), w.put_array(std::span<const float>(values));
+  // The marks, for a resumed render (sdk::StateWriter and sdk::StateReader); restore changes nothing
+  // unless it reads all of it.
+  template <class Writer>
+  void save(Writer &w) const {
+    w.put(levels_), w.put(uint64_t(cells_.size()));
+    cells_.for_each([&](uint64_t k, float v) { w.put(k), w.put(v); });
   }
-  bool restore(sdk::StateReader &r) {
+  template <class Reader>
+  bool restore(Reader &r) {
     uint64_t levels = 0, n = 0;
-    std::vector<uint64_t> keys;
-    std::vector<float> values;
-    if (!(r.get(levels) && r.get(n) && r.get_array(keys, n) && r.get_array(values, n))) return false;
+    if (!(r.get(levels) && r.get(n))) return false;
     CellTable cells;
     for (uint64_t i = 0; i < n; ++i) {
-      if (keys[i] == 0 || !(values[i] >= 0) || !std::isfinite(values[i])) return false;
-      cells.max_into(keys[i], values[i]);
+      uint64_t key = 0;
+      float value = 0;
+      if (!(r.get(key) && r.get(value)) || key == 0 || !(value >= 0) || !std::isfinite(value)) return false;
+      cells.max_into(key, value);
     }
     cells_ = std::move(cells), levels_ = levels;
     return true;

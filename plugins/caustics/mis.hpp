@@ -85,23 +85,26 @@ struct MisSum {
 
 // Photon-side state of one photon path (spec 3.3, "photon side").
 struct PhotonMis {
-  Mis A = 0;             // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
-  Mis B = 0;             // sum over the stored rough vertices s' further towards the light of
-                         // q_M,s' / q_M,s, over the same factors except the radius ratio (included)
-  Mis B_importance = 0;  // the same sum with each term times the importance I(x_s') (photon guiding: the
-                         // merge at s' has the effective photon count N_u (1 + c I(x_s')), spec 6.3)
-  int exp2 = 0;          // A, B and B_importance are each times 2^exp2
+  Mis A = 0;  // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
+  Mis B = 0;  // sum over the stored rough vertices s' further towards the light of
+              // q_M,s' / q_M,s, over the same factors except the radius ratio (included)
+  // Photon guiding (spec 6.3): the merge at s' has the effective photon count N_u (1 + c I(x_s')), so its
+  // term in B weighs (1 + c I)^2 = 1 + 2 c I + c^2 I^2 (the MIS exponent). c is known only once the pass
+  // is done: these are the same sum as B with each term times I and times I^2.
+  Mis B_importance = 0, B_importance2 = 0;
+  int exp2 = 0;          // A, B, B_importance and B_importance2 are each times 2^exp2
   bool b_valid = false;  // some stored rough vertex precedes (B is a sum of >= 1 terms)
 
   float log2_A() const { return stored_log2(A, exp2); }
   float log2_B() const { return stored_log2(B, exp2); }
   float log2_B_importance() const { return stored_log2(B_importance, exp2); }
+  float log2_B_importance2() const { return stored_log2(B_importance2, exp2); }
 
   // Emission. hittable: BSDF sampling can hit the emitter (area and non-delta infinite lights).
   // cos_e: |cos| at the emitter between its normal and the photon direction (1 for infinite lights).
   void emit(bool hittable, float cos_e, float lp) {
     A = hittable && lp > 0 ? mis(Mis(cos_e) / lp) : 0.0;
-    B = B_importance = 0;
+    B = B_importance = B_importance2 = 0;
     exp2 = 0;
     b_valid = false;
     rescale();
@@ -112,6 +115,7 @@ struct PhotonMis {
     A /= m;
     B /= m;
     B_importance /= m;
+    B_importance2 /= m;
     rescale();
   }
   // Scattering at the current vertex: c_out = |cos| of the new direction, w_fwd its pdf, w_rev the pdf
@@ -123,21 +127,36 @@ struct PhotonMis {
     A = g * (r * A + std::ldexp(E, -exp2));
     if (rough) {
       B = g * (r * B + (stored ? std::ldexp(1.0, -exp2) : 0.0));
-      B_importance = g * (r * B_importance + (stored ? std::ldexp(Mis(importance), -exp2) : 0.0));
+      const Mis I = stored ? Mis(importance) : 0.0;
+      B_importance = g * (r * B_importance + std::ldexp(I, -exp2));
+      B_importance2 = g * (r * B_importance2 + std::ldexp(I * I, -exp2));
       b_valid = b_valid || stored;
     } else {
       B = g * r * B;
       B_importance = g * r * B_importance;
+      B_importance2 = g * r * B_importance2;
     }
     rescale();
   }
   void rescale() {
+    Mis *values[] = {&A, &B, &B_importance, &B_importance2};
     renormalise(
-        3, [this](uint32_t i) -> Mis & { return i == 0   ? A
-                                                : i == 1 ? B
-                                                         : B_importance; }, exp2);
+        4, [&](uint32_t i) -> Mis & { return *values[i]; }, exp2);
   }
 };
+
+// log2 of B with every term at its vertex's effective photon count relative to N_u, squared (the MIS
+// exponent), from a photon's log2 B, B_importance and B_importance2:
+// log2(B + 2 c B_importance + c^2 B_importance2), c = N_m / (N_u b^) of the pass (spec 6.3). Exact in
+// double over the whole float range: every term is scaled by the largest.
+inline float fold_importance(float log2_b, float log2_b1, float log2_b2, double c) {
+  constexpr float kNone = -std::numeric_limits<float>::infinity();
+  if (!(c > 0) || (log2_b1 == kNone && log2_b2 == kNone)) return log2_b;
+  const double l2c = std::log2(c);
+  const double x[3] = {double(log2_b), double(log2_b1) + 1 + l2c, double(log2_b2) + 2 * l2c};
+  const double m = std::max({x[0], x[1], x[2]});
+  return float(m + std::log2(std::exp2(x[0] - m) + std::exp2(x[1] - m) + std::exp2(x[2] - m)));
+}
 
 // The NEE term E of the first photon vertex x_{k-1} (after arrive()): N_k / (L_k L_{k-1}).
 // nk: the NEE area density of x_k seen from x_{k-1} including light selection (area lights:

@@ -73,14 +73,15 @@ struct PhotonData {
 };
 static_assert(sizeof(PhotonData) == 32, "photon layout");
 
-// A photon as the photon tracer stores it: 48 bytes. The map keeps positions and the rest apart.
+// A photon as the photon tracer stores it: 52 bytes. The map keeps positions and the rest apart.
 struct Photon : PhotonData {
-  float p[3];          // position, world space
-  float B_importance;  // log2 of PhotonMis::B_importance, folded into B once the pass's guide totals
-                       // are known (guided_pass.cpp)
+  float p[3];  // position, world space
+  // log2 of PhotonMis::B_importance and B_importance2, folded into B once the pass's guide totals are
+  // known (guided_pass.cpp, fold_importance)
+  float B_importance, B_importance2;
   Vec3f position() const { return Vec3f::load(p); }
 };
-static_assert(sizeof(Photon) == 48, "photon layout");
+static_assert(sizeof(Photon) == 52, "photon layout");
 
 class PhotonKdTree {
  public:
@@ -95,7 +96,7 @@ class PhotonKdTree {
     nodes_.assign((size_t(1) << (depth + 1)), Node{});
     lo_ = Vec3f(kInfinity), hi_ = Vec3f(-kInfinity);
     // The tree is built over 16-byte keys (position, photon index), which nth_element moves faster than
-    // 48-byte photons; the same comparisons on the same positions give the same permutation.
+    // 52-byte photons; the same comparisons on the same positions give the same permutation.
     std::vector<Key> &keys = keys_;  // kept from build to build, as the arrays below (no page faults)
     keys.resize(n_);
     // Keys and bounds in chunks, and below the copies in tree order: serial work in a photon pass is

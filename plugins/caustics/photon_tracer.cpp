@@ -136,6 +136,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
       ph.A = mis_state.log2_A();
       ph.B = mis_state.log2_B();
       ph.B_importance = mis_state.log2_B_importance();
+      ph.B_importance2 = mis_state.log2_B_importance2();
       ph.bits = Photon::pack(depth, prev_rough, mis_state.b_valid, light);
       out.photons.push_back(ph);
       out.work += kPhotonWork;

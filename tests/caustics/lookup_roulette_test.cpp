@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lookup_roulette.hpp"
+#include "state_bytes.hpp"
 
 namespace nimbus::caustics {
 namespace {
@@ -76,24 +77,6 @@ TEST(CausticsLookupRoulette, UnmeasuredClassesKeepTheirProbability) {
   EXPECT_EQ(r.probability(kFirstLookup), 1.0f);
   EXPECT_EQ(r.probability(kLaterLookup), 1.0f);
 }
-
-// A byte buffer with the StateWriter/StateReader calls save and restore use.
-struct Bytes {
-  std::vector<unsigned char> data;
-  size_t read = 0;
-  template <class T>
-  void put(const T &v) {
-    const auto *p = reinterpret_cast<const unsigned char *>(&v);
-    data.insert(data.end(), p, p + sizeof v);
-  }
-  template <class T>
-  bool get(T &v) {
-    if (data.size() - read < sizeof v) return false;
-    std::memcpy(&v, data.data() + read, sizeof v);
-    read += sizeof v;
-    return true;
-  }
-};
 
 TEST(CausticsLookupRoulette, StateRoundTripsAndRejectsOutOfRangeValues) {
   const LookupRoulette r = converge({1.0, 10.0, {0.05, 0.002}, {2.0, 4.0}});

@@ -34,6 +34,10 @@ struct SyntheticPath {
   uint32_t d_photon = kPhotonMaxVertices;
   // Lookup probabilities (lookup_roulette.hpp) at the camera path's first rough vertex and after it.
   double q_first = 1, q_later = 1;
+  // Photon guiding (spec 6.3): the importance I at each vertex and c = N_m / (N_u b^), so that the merge
+  // at x_s has the effective count neff (1 + c I_s).
+  std::vector<double> importance;
+  double ratio = 0;
 
   bool finite() const { return light == LightKind::Area || light == LightKind::Point; }
   bool hittable() const { return light == LightKind::Area || light == LightKind::Infinite; }
@@ -95,6 +99,13 @@ SyntheticPath random_path(std::mt19937_64 &g, double spread = 1e3, uint32_t max_
     p.q_first = log_uniform(g, kMinLookupProbability, 1);
     p.q_later = log_uniform(g, kMinLookupProbability, 1);
   }
+  p.importance.assign(p.k, 0);
+  if (std::uniform_real_distribution<double>(0, 1)(g) < 0.5) {
+    // Importance over many decades, unmarked (0) at a third of the vertices.
+    p.ratio = log_uniform(g, 1e-3, 1e3);
+    for (uint32_t j = 1; j < p.k; ++j)
+      if (std::uniform_real_distribution<double>(0, 1)(g) < 0.67) p.importance[j] = log_uniform(g, 1e-4, 1e4);
+  }
   return p;
 }
 
@@ -111,6 +122,11 @@ struct ClosedForm {
 
 // pi r_s^2 at lookup vertex x_s: every lookup of a path uses its first rough vertex's radius.
 double area_at(const SyntheticPath &p, uint32_t) { return p.area; }
+
+// The effective photon count of the merge at x_s, as the production code rounds it (a float).
+double neff_at(const SyntheticPath &p, uint32_t s) {
+  return double(float(double(float(p.neff)) * (1.0 + p.ratio * double(float(p.importance[s])))));
+}
 
 // The lookup probability at rough vertex x_s: q_first at the path's first rough vertex.
 double lookup_probability_at(const SyntheticPath &p, uint32_t s) {
@@ -147,7 +163,7 @@ ClosedForm closed_form(const SyntheticPath &p) {
   f.qm.assign(k + 1, 0);
   for (uint32_t s = 1; s < k; ++s) {
     if (!merge_eligible(p, s)) continue;
-    double q = area_at(p, s) * p.neff * lookup_probability_at(p, s);
+    double q = area_at(p, s) * neff_at(p, s) * lookup_probability_at(p, s);
     for (uint32_t j = 2; j <= s; ++j) q *= C[j];
     for (uint32_t j = s; j + 2 <= k; ++j) q *= L[j];
     f.qm[s] = q * light_pair;
@@ -158,7 +174,7 @@ ClosedForm closed_form(const SyntheticPath &p) {
 // ---- production state machines --------------------------------------------------------------------
 struct PhotonAt {
   bool stored = false;
-  float A = 0, B = 0;  // log2 A, log2 B
+  float A = 0, B = 0;  // log2 A, log2 B (B with its vertices' effective counts folded in)
   bool b_valid = false, prev_rough = false;
 };
 
@@ -191,9 +207,12 @@ Weights production(const SyntheticPath &p) {
     }
     if (rough && j == k - 1) break;  // a path whose first vertex is rough ends there
     const bool stored = rough && had_sharp && (k - j) <= p.d_photon;
-    at[j] = PhotonAt{stored, pm.log2_A(), pm.log2_B(), pm.b_valid, prev_rough};
+    at[j] = PhotonAt{stored, pm.log2_A(),
+                     fold_importance(pm.log2_B(), pm.log2_B_importance(), pm.log2_B_importance2(), p.ratio),
+                     pm.b_valid, prev_rough};
     if (rough && prev_rough) break;
-    pm.scatter(float(p.cos_prev[j]), float(p.w_light[j]), float(p.w_cam[j]), rough, stored, E);
+    pm.scatter(float(p.cos_prev[j]), float(p.w_light[j]), float(p.w_cam[j]), rough, stored, E,
+               float(p.importance[j]));
     rescaled = rescaled || pm.exp2 != 0;
     prev_rough = rough;
     had_sharp = had_sharp || !rough;
@@ -222,11 +241,13 @@ Weights production(const SyntheticPath &p) {
     if (lookup && cm.rough_count == 1) area = Mis(float(p.area));
     const Mis q = Mis(float(lookup_class(cm.rough_count) == kFirstLookup ? p.q_first : p.q_later));
     const Mis q_b = Mis(float(p.q_later));
+    // The production code's effective count at a lookup vertex: N_u (1 + c I) in double, as a float.
+    const Mis neff_j = Mis(float(double(neff) * (1.0 + p.ratio * double(float(p.importance[j])))));
     if (lookup && at[j].stored && p.lp > 0) {
       const PhotonAt &ph = at[j];
       w.wm[j] =
           merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
-                       mis(area * neff * q), mis(neff * q), mis(neff * q_b), cm.gamma_sum(k), cm.clamped);
+                       mis(area * neff_j * q), mis(neff_j * q), mis(neff * q_b), cm.gamma_sum(k), cm.clamped);
       w.merged[j] = true;
     }
     if (j == k - 1 && !p.delta(j)) {
@@ -235,7 +256,7 @@ Weights production(const SyntheticPath &p) {
                         cm.clamped);
       w.nee = true;
     }
-    cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, area * neff * q);
+    cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, area * neff_j * q);
   }
   w.clamped = cm.clamped;
   w.rescaled = w.rescaled || cm.exp2 != 0;
