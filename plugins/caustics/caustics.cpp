@@ -20,6 +20,7 @@
 #include "merging.hpp"
 #include "photon_pass.hpp"
 #include "schedule.hpp"
+#include "solver_stats.hpp"
 #include "useful_pixels.hpp"
 
 namespace nimbus::caustics {
@@ -99,7 +100,13 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
     const bool caustics_can_form = emitters_.emits_photons() && !emitters_.targets().empty();
-    emitters_.set_lightmix(ids().lightmix);
+    // Light selection (spec 6.1): the prior from where the camera is, adapted at every photon pass.
+    nimbus_camera_sample_t centre{{0.5f * float(width_), 0.5f * float(height_)}, {0.5f, 0.5f}};
+    nimbus_ray_t eye{};
+    services().camera->generate_ray(h, &centre, &eye);
+    emission_selection_.configure(emitters_.selection_inputs(Vec3f::load(eye.org)), ids().lightmix);
+    emitters_.set_selection(emission_selection_.probabilities());
+    pending_used_.clear();
     armed_ = enabled_ && caustics_can_form;
     // The `caustics` element is the light of a class of paths (spec 8), with or without a map, and with
     // the switch off too (then the path tracer's share of that light).
@@ -120,15 +127,25 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     if (!armed_) return NIMBUS_OK;
     const uint64_t paths = schedule_.plan(iteration);
     if (paths == 0 && rebuild_map_) {
-      // A resumed render: the map of the last pass, from the same arguments (photon_pass is deterministic).
+      // A resumed render: the map of the last pass, from the same arguments (photon_pass is deterministic)
+      // and the same light selection, with the lookups' flags on its paths as they were saved.
+      emitters_.set_selection(emission_selection_.probabilities());
       PhotonPass::Result result;
       if (nimbus_status_t s = photon_pass(schedule_.passes(), map_request_, map_reach_, result);
           s != NIMBUS_OK)
         return s;
+      if (!pass_.path_use().set_used_bits(pending_used_)) return NIMBUS_E_INVALID_ARG;
     }
     rebuild_map_ = false;
+    pending_used_.clear();
     if (paths > 0) {
       const auto t0 = std::chrono::steady_clock::now();
+      // The last map's uniform paths and whether lookups used them adapt the light selection (spec 6.1).
+      pass_.path_use().for_each([&](uint32_t light, bool uniform, bool used) {
+        if (uniform) emission_selection_.count(light, used);
+        stats_.used_paths += used ? 1 : 0;
+      });
+      emitters_.set_selection(emission_selection_.probabilities());
       map_request_ = paths, map_reach_ = PhotonPass::filter_reach(lookup_radii_);
       PhotonPass::Result result;
       if (nimbus_status_t s = photon_pass(schedule_.passes() + 1, paths, map_reach_, result); s != NIMBUS_OK)
@@ -211,29 +228,11 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   }
 
   void end_render(nimbus_status_t) override {
-    if (progress_ && enabled_) {
-      const nimbus_host_t *h = host().get();
-      progress_->stat_add(h, "caustics_photon_paths", double(stats_.photon_paths));
-      progress_->stat_add(h, "caustics_photons", double(stats_.photons));
-      progress_->stat_add(h, "caustics_photon_passes", double(stats_.passes));
-      progress_->stat_add(h, "caustics_map_iterations", double(stats_.map_iterations));
-      progress_->stat_add(h, "caustics_photon_seconds", stats_.photon_seconds);
-      // Camera paths whose MIS weights met an overflow (mis.hpp): 0 in any sane scene.
-      progress_->stat_add(h, "caustics_mis_clamped", double(stats_.mis_clamped));
-      progress_->stat_add(h, "caustics_photon_ratio", schedule_.photon_ratio());
-      // Photon guiding (spec 6.3): passes whose paths a guide chose, its proposals' acceptance and the
-      // importance map's marked cells.
-      progress_->stat_add(h, "caustics_guided_passes", double(stats_.guided_passes));
-      progress_->stat_add(h, "caustics_guide_acceptance",
-                          stats_.proposals > 0 ? double(stats_.accepted) / double(stats_.proposals) : 0.0);
-      progress_->stat_add(h, "caustics_importance_cells", double(importance_.cells()));
-      // The lookup roulette's final probabilities (lookup_roulette.hpp).
-      progress_->stat_add(h, "caustics_lookup_probability_first", roulette_.probability(kFirstLookup));
-      progress_->stat_add(h, "caustics_lookup_probability_later", roulette_.probability(kLaterLookup));
-      const double bytes =
-          stats_.photons > 0 ? double(stats_.photon_bytes) / double(stats_.photons) : double(sizeof(Photon));
-      progress_->stat_add(h, "caustics_bytes_per_photon", bytes);
-    }
+    if (progress_ && enabled_)
+      stats_.report(
+          progress_, host().get(),
+          {schedule_.photon_ratio(), roulette_.probability(kFirstLookup), roulette_.probability(kLaterLookup),
+           double(importance_.cells()), double(sizeof(Photon))});
     pass_.release();
   }
 
@@ -250,6 +249,10 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     useful_.save(w);
     roulette_.save(w);
     importance_.save(w), pass_importance_.save(w);
+    emission_selection_.save(w);
+    const std::vector<uint64_t> used = pass_.path_use().used_bits();
+    w.put(uint64_t(used.size()));
+    for (uint64_t b : used) w.put(b);
     w.put(stats_);
     return NIMBUS_OK;
   }
@@ -268,11 +271,20 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     UsefulPixels useful = useful_;
     LookupRoulette roulette;
     ImportanceMap importance = importance_, pass_importance = pass_importance_;
-    Stats stats;
+    EmissionSelection selection = emission_selection_;
+    uint64_t used_words = 0;
+    std::vector<uint64_t> used;
+    SolverStats stats;
     if (!(schedule.restore(r) && r.get(work) && r.get(request) && r.get(reach) &&
           r.get_array(radii.counts()) && useful.restore(r) && roulette.restore(r) && importance.restore(r) &&
-          pass_importance.restore(r) && r.get(stats) && r.done()))
+          pass_importance.restore(r) && selection.restore(r) && r.get(used_words) &&
+          used_words <= (1u << 26)))
       return NIMBUS_E_INVALID_ARG;
+    used.resize(used_words);
+    for (uint64_t &b : used)
+      if (!r.get(b)) return NIMBUS_E_INVALID_ARG;
+    if (!(r.get(stats) && r.done())) return NIMBUS_E_INVALID_ARG;
+    emission_selection_ = std::move(selection), pending_used_ = std::move(used);
     schedule_ = schedule, photon_work_ = work, map_request_ = request, map_reach_ = reach;
     roulette_ = roulette;
     importance_ = std::move(importance), pass_importance_ = std::move(pass_importance);
@@ -317,6 +329,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
               result.paths,
               &pass_importance_,
               result.importance_ratio,
+              &pass_.path_use(),
               merge_.radius_per_length,
               scene_radius_};
     photon_work_ = result.traced > 0 ? double(result.work) / double(result.traced) : 0.0;
@@ -346,20 +359,17 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   bool rebuild_map_ = false;  // resumed with a map active: trace it again before the next camera pass
   MergeContext merge_;        // what camera passes read while the map is active
   uint64_t seed_ = 0;
-  GuideBinding guide_;             // the bound guide's rev 2 table, if any
-  ImportanceMap importance_;       // every successful lookup's mark so far (spec 6.3)
-  ImportanceMap pass_importance_;  // the copy the current map's pass was guided by
+  GuideBinding guide_;                    // the bound guide's rev 2 table, if any
+  ImportanceMap importance_;              // every successful lookup's mark so far (spec 6.3)
+  ImportanceMap pass_importance_;         // the copy the current map's pass was guided by
+  EmissionSelection emission_selection_;  // light selection for photon emission (spec 6.1)
+  std::vector<uint64_t> pending_used_;    // a resumed map's lookup flags, until it is traced again
   bool map_active_ = false;
   UsefulPixels useful_;
   LookupRoulette roulette_;
   // The format of save_state's bytes.
   static constexpr uint32_t kStateVersion = 3;
-  struct Stats {
-    uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
-    uint64_t mis_clamped = 0;
-    uint64_t guided_passes = 0, proposals = 0, accepted = 0;
-    double photon_seconds = 0;  // photon tracing and kd-tree builds
-  } stats_;
+  SolverStats stats_;
 };
 
 }  // namespace

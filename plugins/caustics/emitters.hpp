@@ -22,7 +22,6 @@
 #include <nimbus/lights.h>
 
 #include <algorithm>
-#include <map>
 #include <memory>
 #include <vector>
 
@@ -31,6 +30,7 @@
 #include <nimbus/cpp/sampling.hpp>
 
 #include "emission_cone.hpp"
+#include "emission_selection.hpp"
 #include "environment_emission.hpp"
 #include "sharp_targets.hpp"
 
@@ -57,6 +57,7 @@ struct Emitter {
   Vec3f axis;              // spot: the cone axis; sun: the direction photons travel
   float cos_theta_e = -1;  // spot / sun cone
   Vec3f position;          // point, spot; area: the centre of its bounds
+  Vec3f lo, hi;            // world bounds (finite lights)
   float own = 1;           // share of the light's own emission (finite) or of the scene's disk (sun)
   std::vector<Aim> aims;   // finite lights: the cones towards the targets
   // sun: 1 / the area of the targets' disk or rectangle; the rectangle [s0, s1] x [t0, t1] around the
@@ -80,7 +81,8 @@ inline Emitter make_emitter(const nimbus_light_info_t &info) {
   e.power = std::isfinite(info.power) && info.power > 0 ? info.power : 0.0f;
   e.axis = Vec3f::load(info.axis);
   e.cos_theta_e = info.cos_theta_e;
-  e.position = (Vec3f::load(info.bounds_min) + Vec3f::load(info.bounds_max)) * 0.5f;
+  e.lo = Vec3f::load(info.bounds_min), e.hi = Vec3f::load(info.bounds_max);
+  e.position = (e.lo + e.hi) * 0.5f;
   const bool has_axis = !is_black(e.axis);
   if (info.flags & NIMBUS_LIGHT_AREA)
     e.kind = EmitterKind::Area;
@@ -127,25 +129,21 @@ class EmitterSet {
     table_ = AliasTable(rule_);
   }
 
-  // With LightMix requested, half of the photon paths come from a LightMix group drawn uniformly (among
-  // groups with a photon-emitting light) and a light of it by the rule of build(), so that a weak
-  // group's caustic forms as fast as a strong one's (spec 6.1, 8); without, the rule alone.
-  void set_lightmix(bool on) {
-    if (!on) {
-      table_ = AliasTable(rule_);
-      return;
+  // What light selection (emission_selection.hpp) weighs each light by, seen from `camera`: its photon
+  // power (the power of what it emits towards targets; a light that cannot aim at any keeps the
+  // defensive share), its group and its squared distance to the camera.
+  std::vector<EmissionSelection::Light> selection_inputs(const Vec3f &camera) const {
+    std::vector<EmissionSelection::Light> out(emitters_.size());
+    for (size_t i = 0; i < emitters_.size(); ++i) {
+      const Emitter &e = emitters_[i];
+      const Vec3f gap = max(max(e.lo - camera, camera - e.hi), Vec3f(0));
+      const float eps = std::max(0.5f * length(e.hi - e.lo), 1e-3f * scene_radius_);
+      out[i] = {rule_[i], e.infinite(), std::max(double(length_squared(gap)), double(eps) * eps), e.group};
     }
-    std::map<uint32_t, double> group_weight;  // the rule's weight of each group that emits
-    double total = 0;
-    for (size_t i = 0; i < rule_.size(); ++i)
-      if (rule_[i] > 0) total += rule_[i], group_weight[emitters_[i].group] += rule_[i];
-    std::vector<double> w(rule_.size(), 0.0);
-    for (size_t i = 0; i < rule_.size(); ++i)
-      if (rule_[i] > 0)
-        w[i] = 0.5 * rule_[i] / total +
-               0.5 * rule_[i] / (group_weight[emitters_[i].group] * double(group_weight.size()));
-    table_ = AliasTable(w);
+    return out;
   }
+  // The selection probabilities of the next photon map (both sides read them until the one after).
+  void set_selection(const std::vector<double> &p) { table_ = AliasTable(p); }
 
   bool emits_photons() const { return !table_.empty(); }
   size_t size() const { return emitters_.size(); }
@@ -350,7 +348,7 @@ class EmitterSet {
   SharpTargets targets_;
   const nimbus_host_t *host_ = nullptr;
   const nimbus_host_lights_v1_t *lights_ = nullptr;
-  std::vector<double> rule_;  // selection weights without LightMix
+  std::vector<double> rule_;  // photon power of each light (selection_inputs)
   AliasTable table_;
   Vec3f scene_center_;
   float scene_radius_ = 1;

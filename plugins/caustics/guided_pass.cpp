@@ -35,7 +35,10 @@ double trace_path(void *user, const float *u, uint32_t kind, uint64_t *path) {
   if (chunk.photons.size() < c.cap) {
     PhotonSamples samples(v, kPhotonDims);
     rec.target = c.tracer->trace(*c.ctx, samples, 0, 0, c.importance, chunk);
+  } else {
+    chunk.path_light.push_back(kNoLight);
   }
+  if (!rec.uniform) chunk.path_light.back() |= kProposalPath;
   rec.count = uint32_t(chunk.photons.size()) - rec.first;
   if (path) *path = chunk.guided.size();
   chunk.guided.push_back(rec);

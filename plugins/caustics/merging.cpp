@@ -40,6 +40,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     const float kernel = kernel_norm * (1 - d2 / r2);
     const Rgb c = fr * Rgb::load(ph.power) * (w * kernel);
     if (!is_finite(c) || is_black(c)) return;
+    if (mc.path_use) mc.path_use->mark(mc.map->path_of(ph));
     if (mc.ids.lightmix) rec.add_merge(beta * c * inv_paths, (*mc.light_group)[ph.light()], mc.ids);
     sum += c;
   });

@@ -17,6 +17,7 @@
 #include "lookup_roulette.hpp"
 #include "mis.hpp"
 #include "occupancy_filter.hpp"
+#include "path_use.hpp"
 #include "photon_map.hpp"
 #include "schedule.hpp"
 #include "sharpness.hpp"
@@ -37,6 +38,7 @@ struct MergeContext {
   // the importance map the map's pass used (null, and ratio 0, without guiding).
   const ImportanceMap *importance = nullptr;
   double importance_ratio = 0;
+  PathUse *path_use = nullptr;  // the map's paths: lookups flag those whose photons contributed
   float radius_per_length = 0;  // merge radius per unit path length at the map's pass
   float scene_radius = 1;
   // Lookup probability per class of rough vertex (lookup_roulette.hpp), set before each camera pass.

@@ -73,15 +73,16 @@ struct PhotonData {
 };
 static_assert(sizeof(PhotonData) == 32, "photon layout");
 
-// A photon as the photon tracer stores it: 52 bytes. The map keeps positions and the rest apart.
+// A photon as the photon tracer stores it: 56 bytes. The map keeps positions and the rest apart.
 struct Photon : PhotonData {
-  float p[3];  // position, world space
+  float p[3];     // position, world space
+  uint32_t path;  // the photon path it belongs to: its index in its chunk, then in the pass (path_use.hpp)
   // log2 of PhotonMis::B_importance and B_importance2, folded into B once the pass's guide totals are
   // known (guided_pass.cpp, fold_importance)
   float B_importance, B_importance2;
   Vec3f position() const { return Vec3f::load(p); }
 };
-static_assert(sizeof(Photon) == 52, "photon layout");
+static_assert(sizeof(Photon) == 56, "photon layout");
 
 class PhotonKdTree {
  public:
@@ -96,7 +97,7 @@ class PhotonKdTree {
     nodes_.assign((size_t(1) << (depth + 1)), Node{});
     lo_ = Vec3f(kInfinity), hi_ = Vec3f(-kInfinity);
     // The tree is built over 16-byte keys (position, photon index), which nth_element moves faster than
-    // 52-byte photons; the same comparisons on the same positions give the same permutation.
+    // 56-byte photons; the same comparisons on the same positions give the same permutation.
     std::vector<Key> &keys = keys_;  // kept from build to build, as the arrays below (no page faults)
     keys.resize(n_);
     // Keys and bounds in chunks, and below the copies in tree order: serial work in a photon pass is
@@ -135,9 +136,12 @@ class PhotonKdTree {
     // are farther than r, so their other 32 bytes are never loaded.
     positions_.resize(n_);
     data_.resize(n_);
+    paths_.resize(n_);
     parallel_ranges(parallel, n_, kChunk, [&](size_t b, size_t e) {
-      for (size_t k = b; k < e; ++k)
-        positions_[k] = Vec3f::load(keys[k].p), data_[k] = photons[keys[k].index];
+      for (size_t k = b; k < e; ++k) {
+        const Photon &ph = photons[keys[k].index];
+        positions_[k] = Vec3f::load(keys[k].p), data_[k] = ph, paths_[k] = ph.path;
+      }
     });
     filter_.build(
         n_, reach, [&](size_t i) { return positions_[i]; }, parallel);
@@ -150,6 +154,8 @@ class PhotonKdTree {
     return n_ * (sizeof(Vec3f) + sizeof(PhotonData)) + nodes_.size() * sizeof(Node) + filter_.bytes();
   }
   float filter_reach() const { return filter_.reach(); }
+  // The photon path of a photon query() handed out.
+  uint32_t path_of(const PhotonData &ph) const { return paths_[size_t(&ph - data_.data())]; }
 
   // False only if no photon lies within r of q: the map's bounds, then the occupancy filter. query()
   // asks it first; most lookups end there.
@@ -253,6 +259,7 @@ class PhotonKdTree {
   std::vector<Node> nodes_;       // internal nodes in heap order
   std::vector<Vec3f> positions_;  // in tree order
   std::vector<PhotonData> data_;  // in tree order
+  std::vector<uint32_t> paths_;   // in tree order: each photon's path
   std::vector<Key> keys_;         // build()'s scratch
   Vec3f lo_, hi_;                 // bounds of all photons
   OccupancyFilter filter_;

@@ -55,13 +55,22 @@ nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_ta
 }
 
 void PhotonPass::assemble(const sdk::ParallelFor &parallel, float filter_reach) {
-  // Concatenate in task order: photon indices never depend on threads. The chunks are copied concurrently.
-  std::vector<size_t> offset(chunks_.size() + 1, 0);
-  for (size_t i = 0; i < chunks_.size(); ++i) offset[i + 1] = offset[i] + chunks_[i].photons.size();
+  // Concatenate in task order: photon and path indices never depend on threads. The chunks are copied
+  // concurrently, their photons' path indices moved to the pass's numbering.
+  std::vector<size_t> offset(chunks_.size() + 1, 0), path_offset(chunks_.size() + 1, 0);
+  for (size_t i = 0; i < chunks_.size(); ++i) {
+    offset[i + 1] = offset[i] + chunks_[i].photons.size();
+    path_offset[i + 1] = path_offset[i] + chunks_[i].path_light.size();
+  }
   photons_.resize(offset.back());
+  std::vector<uint32_t> lights(path_offset.back());
   parallel(chunks_.size(), [&](size_t i) {
-    std::copy(chunks_[i].photons.begin(), chunks_[i].photons.end(), photons_.begin() + ptrdiff_t(offset[i]));
+    const PhotonChunk &c = chunks_[i];
+    Photon *out = photons_.data() + offset[i];
+    for (const Photon &ph : c.photons) *out = ph, (out++)->path = ph.path + uint32_t(path_offset[i]);
+    std::copy(c.path_light.begin(), c.path_light.end(), lights.begin() + ptrdiff_t(path_offset[i]));
   });
+  use_.reset(std::move(lights));
   map_.build(photons_, parallel, filter_reach);
 }
 
@@ -75,6 +84,7 @@ void PhotonPass::release() {
   map_ = PhotonKdTree();
   chunks_ = std::vector<PhotonChunk>();
   photons_ = std::vector<Photon>();
+  use_ = PathUse();
 }
 
 }  // namespace nimbus::caustics

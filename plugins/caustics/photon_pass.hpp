@@ -13,6 +13,7 @@
 #include "emitters.hpp"
 #include "importance_map.hpp"
 #include "occupancy_filter.hpp"
+#include "path_use.hpp"
 #include "photon_map.hpp"
 #include "photon_tracer.hpp"
 
@@ -67,6 +68,9 @@ class PhotonPass {
   static float filter_reach(sdk::PerWorker<RadiusHistogram> &lookup_radii);
 
   const PhotonKdTree &map() const { return map_; }
+  // The map's paths: their lights, and which of them camera lookups used.
+  PathUse &path_use() { return use_; }
+  const PathUse &path_use() const { return use_; }
   // [main-thread] Frees the map and the buffers (end of a render).
   void release();
 
@@ -77,6 +81,7 @@ class PhotonPass {
   std::vector<PhotonChunk> chunks_;  // one buffer per task
   std::vector<Photon> photons_;      // the tasks' photons in task order
   PhotonKdTree map_;
+  PathUse use_;
 };
 
 }  // namespace nimbus::caustics

@@ -40,9 +40,12 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
   const nimbus_host_t *h = h_;
   float target = 0;
   float sel = 0;
+  const uint32_t path_index = uint32_t(out.path_light.size());
+  out.path_light.push_back(kNoLight);
   const int64_t li = emitters_.pick(samples.next(), &sel);
   if (li < 0 || !(sel > 0)) return target;
   const uint32_t light = uint32_t(li);
+  out.path_light[path_index] = light;
   const Emitter &em = emitters_[light];
   float ue[4] = {samples.next(), samples.next(), samples.next(), samples.next()};
   // The light's main pair of numbers (position for the sun, environment and area lights; direction
@@ -138,6 +141,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
       ph.B_importance = mis_state.log2_B_importance();
       ph.B_importance2 = mis_state.log2_B_importance2();
       ph.bits = Photon::pack(depth, prev_rough, mis_state.b_valid, light);
+      ph.path = path_index;
       out.photons.push_back(ph);
       out.work += kPhotonWork;
     }

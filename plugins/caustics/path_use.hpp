@@ -1,0 +1,64 @@
+// Which photon paths of the current map were used (solver spec 6.1): the light each path of the pass was
+// emitted from, whether it was a uniform sample (guided proposals are not), and a flag a camera lookup
+// sets when one of the path's photons contributed. Light selection counts the uniform paths per light,
+// and those used, when the next pass begins; the flags survive a checkpoint so a resumed render counts
+// what an uninterrupted one counts.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace nimbus::caustics {
+
+// A path's entry: its light, or kNoLight when it emitted nothing, with kProposalPath set for a guided
+// proposal.
+inline constexpr uint32_t kNoLight = 0x7fffffffu;
+inline constexpr uint32_t kProposalPath = 0x80000000u;
+
+class PathUse {
+ public:
+  // [main-thread] The paths of a new map, none used yet.
+  void reset(std::vector<uint32_t> lights) {
+    lights_ = std::move(lights);
+    used_ = std::make_unique<std::atomic<uint8_t>[]>(lights_.size());
+    for (size_t i = 0; i < lights_.size(); ++i) used_[i].store(0, std::memory_order_relaxed);
+  }
+  // [render-thread] A lookup used a photon of `path`. Relaxed: the flags are read after the camera pass.
+  void mark(uint32_t path) {
+    if (path >= lights_.size()) return;
+    std::atomic<uint8_t> &f = used_[path];
+    if (f.load(std::memory_order_relaxed) == 0) f.store(1, std::memory_order_relaxed);
+  }
+  // [main-thread] f(light, uniform, used) for every path that emitted.
+  template <class F>
+  void for_each(F &&f) const {
+    for (size_t i = 0; i < lights_.size(); ++i) {
+      const uint32_t light = lights_[i] & ~kProposalPath;
+      if (light != kNoLight)
+        f(light, (lights_[i] & kProposalPath) == 0, used_[i].load(std::memory_order_relaxed) != 0);
+    }
+  }
+  size_t size() const { return lights_.size(); }
+
+  // The flags as bits (the lights come back with the map, which a resumed render traces again).
+  std::vector<uint64_t> used_bits() const {
+    std::vector<uint64_t> bits((lights_.size() + 63) / 64, 0);
+    for (size_t i = 0; i < lights_.size(); ++i)
+      if (used_[i].load(std::memory_order_relaxed)) bits[i / 64] |= uint64_t(1) << (i % 64);
+    return bits;
+  }
+  bool set_used_bits(const std::vector<uint64_t> &bits) {
+    if (bits.size() != (lights_.size() + 63) / 64) return false;
+    for (size_t i = 0; i < lights_.size(); ++i)
+      used_[i].store(uint8_t((bits[i / 64] >> (i % 64)) & 1), std::memory_order_relaxed);
+    return true;
+  }
+
+ private:
+  std::vector<uint32_t> lights_;
+  std::unique_ptr<std::atomic<uint8_t>[]> used_;
+};
+
+}  // namespace nimbus::caustics

@@ -1,0 +1,50 @@
+// The caustics solver's render statistics: counted over the render (and kept in its checkpoints), then
+// reported once through the host's progress service as "caustics_*" entries of the output's metadata.
+#pragma once
+
+#include <nimbus/nimbus.hpp>
+
+#include <cstdint>
+
+namespace nimbus::caustics {
+
+struct SolverStats {
+  uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
+  uint64_t mis_clamped = 0;
+  uint64_t guided_passes = 0, proposals = 0, accepted = 0;
+  uint64_t used_paths = 0;    // photon paths of finished maps that some lookup used
+  double photon_seconds = 0;  // photon tracing and kd-tree builds
+
+  // What the rest of the solver knows at the end: the budget's photon ratio, the lookup roulette's
+  // probabilities, the importance map's size, and a photon's size in bytes.
+  struct Final {
+    double photon_ratio = 0, lookup_first = 1, lookup_later = 1, importance_cells = 0, photon_size = 0;
+  };
+
+  // [main-thread]
+  void report(const nimbus_host_progress_v1_t *progress, const nimbus_host_t *h, const Final &f) const {
+    const auto ratio = [](uint64_t a, uint64_t b) { return b > 0 ? double(a) / double(b) : 0.0; };
+    progress->stat_add(h, "caustics_photon_paths", double(photon_paths));
+    progress->stat_add(h, "caustics_photons", double(photons));
+    progress->stat_add(h, "caustics_photon_passes", double(passes));
+    progress->stat_add(h, "caustics_map_iterations", double(map_iterations));
+    progress->stat_add(h, "caustics_photon_seconds", photon_seconds);
+    // Camera paths whose MIS weights met an overflow (mis.hpp): 0 in any sane scene.
+    progress->stat_add(h, "caustics_mis_clamped", double(mis_clamped));
+    progress->stat_add(h, "caustics_photon_ratio", f.photon_ratio);
+    // Photon guiding (spec 6.3): passes whose paths a guide chose, its proposals' acceptance and the
+    // importance map's marked cells.
+    progress->stat_add(h, "caustics_guided_passes", double(guided_passes));
+    progress->stat_add(h, "caustics_guide_acceptance", ratio(accepted, proposals));
+    progress->stat_add(h, "caustics_importance_cells", f.importance_cells);
+    // Share of the traced photon paths (of finished maps) whose photons some lookup used.
+    progress->stat_add(h, "caustics_used_path_fraction", ratio(used_paths, photon_paths));
+    // The lookup roulette's final probabilities (lookup_roulette.hpp).
+    progress->stat_add(h, "caustics_lookup_probability_first", f.lookup_first);
+    progress->stat_add(h, "caustics_lookup_probability_later", f.lookup_later);
+    progress->stat_add(h, "caustics_bytes_per_photon",
+                       photons > 0 ? double(photon_bytes) / double(photons) : f.photon_size);
+  }
+};
+
+}  // namespace nimbus::caustics
