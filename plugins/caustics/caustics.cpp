@@ -30,9 +30,16 @@ const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, "nimbus.host.tasks
 // The host binds the Metropolis photon guide unless the scene names another or none (SDK 1.5).
 const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix",
                                  "default-guide=nimbus.guide.metropolis", nullptr};
+// The switch, and two choices kept for measurement (docs/performance.md compares against them).
+const char *const kEmissionChoices[] = {"guided", "uniform", nullptr};
+const char *const kSelectionChoices[] = {"adaptive", "power", nullptr};
 const nimbus_option_decl_t kOptions[] = {
     {"caustics", NIMBUS_OPTION_SWITCH, 0, "on", nullptr,
-     "caustics by photon merging; off renders exactly what nimbus.pt renders"}};
+     "caustics by photon merging; off renders exactly what nimbus.pt renders"},
+    {"photon_emission", NIMBUS_OPTION_CHOICE, 0, "guided", kEmissionChoices,
+     "for measurement: photon paths guided by the bound guide where most are wasted, or always uniform"},
+    {"photon_light_selection", NIMBUS_OPTION_CHOICE, 0, "adaptive", kSelectionChoices,
+     "for measurement: lights chosen for photons by camera distance and usefulness, or by power alone"}};
 
 class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, CausticsRecord> {
   using Base = sdk::CameraPathIntegrator<CausticsSolver, CausticsRecord>;
@@ -62,10 +69,14 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     // The host validated the switch against kOptions (on or off); absent, it is the default.
     const char *caustics = sdk::option_value(setup, "caustics");
     enabled_ = !caustics || std::strcmp(caustics, "off") != 0;
+    const char *emission = sdk::option_value(setup, "photon_emission");
+    const char *selection = sdk::option_value(setup, "photon_light_selection");
+    uniform_emission_ = emission && std::strcmp(emission, "uniform") == 0;
+    power_selection_ = selection && std::strcmp(selection, "power") == 0;
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
     seed_ = setup.seed;
     guide_ = {};
-    if (setup.guide) {
+    if (setup.guide && !uniform_emission_) {
       const auto *t = static_cast<const nimbus_guiding_v2_t *>(
           setup.guide->get_interface(setup.guide, NIMBUS_IFACE_GUIDING, 2));
       if (t && t->struct_size >= sizeof(nimbus_guiding_v2_t))
@@ -104,7 +115,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     nimbus_camera_sample_t centre{{0.5f * float(width_), 0.5f * float(height_)}, {0.5f, 0.5f}};
     nimbus_ray_t eye{};
     services().camera->generate_ray(h, &centre, &eye);
-    emission_selection_.configure(emitters_.selection_inputs(Vec3f::load(eye.org)), ids().lightmix);
+    emission_selection_.configure(emitters_.selection_inputs(Vec3f::load(eye.org)), ids().lightmix,
+                                  !power_selection_);
     emitters_.set_selection(emission_selection_.probabilities());
     pending_used_.clear();
     armed_ = enabled_ && caustics_can_form;
@@ -372,6 +384,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   EmissionSelection emission_selection_;  // light selection for photon emission (spec 6.1)
   static constexpr double kGuideBelowUsedShare = 1.0 / 3.0;
   bool guide_wanted_ = true;  // the last map's uniform paths were mostly wasted: guide the next pass
+  bool uniform_emission_ = false, power_selection_ = false;  // the measurement options
   std::vector<uint64_t> pending_used_;  // a resumed map's lookup flags, until it is traced again
   bool map_active_ = false;
   UsefulPixels useful_;

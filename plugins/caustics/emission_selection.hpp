@@ -27,8 +27,9 @@ class EmissionSelection {
     uint32_t group = 0;     // LightMix group
   };
 
-  void configure(std::vector<Light> lights, bool lightmix) {
-    lights_ = std::move(lights), lightmix_ = lightmix;
+  // adaptive false: photon power alone, never adapted (kept to measure the rule against).
+  void configure(std::vector<Light> lights, bool lightmix, bool adaptive = true) {
+    lights_ = std::move(lights), lightmix_ = lightmix, adaptive_ = adaptive;
     n_.assign(lights_.size(), 0), c_.assign(lights_.size(), 0);
   }
   // [main-thread] A uniform photon path of `light` from a finished map, and whether it contributed.
@@ -45,7 +46,7 @@ class EmissionSelection {
     double n_sum = 0, c_sum = 0;
     for (size_t l = 0; l < n; ++l) n_sum += double(n_[l]), c_sum += double(c_[l]);
     double adapted = 0;
-    if (c_sum > 0) {
+    if (c_sum > 0 && adaptive_) {
       const double mean = c_sum / n_sum;
       for (size_t l = 0; l < n; ++l) adapted += p0[l] * (double(c_[l]) + mean) / (double(n_[l]) + 1);
     }
@@ -81,8 +82,12 @@ class EmissionSelection {
     for (size_t l = 0; l < lights_.size(); ++l) {
       const Light &L = lights_[l];
       if (!(L.weight > 0)) continue;
-      pi[l] = L.infinite ? L.weight : L.weight / L.distance2;
+      pi[l] = L.infinite || !adaptive_ ? L.weight : L.weight / L.distance2;
       sum[L.infinite] += pi[l];
+    }
+    if (!adaptive_) {
+      for (double &w : pi) w /= sum[0] + sum[1];
+      return pi;
     }
     const bool both = sum[0] > 0 && sum[1] > 0;
     for (size_t l = 0; l < lights_.size(); ++l)
@@ -100,7 +105,7 @@ class EmissionSelection {
   }
 
   std::vector<Light> lights_;
-  bool lightmix_ = false;
+  bool lightmix_ = false, adaptive_ = true;
   std::vector<uint64_t> n_, c_;  // uniform paths emitted, and those that contributed, per light
 };
 

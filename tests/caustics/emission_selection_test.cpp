@@ -28,6 +28,12 @@ TEST(CausticsEmissionSelection, PriorSplitsGroupsAndWeighsFiniteLightsByCameraDi
   EmissionSelection f;
   f.configure({{1, false, 4, 0}, {3, false, 4, 0}}, false);
   EXPECT_NEAR(f.probabilities()[1], 0.75, 1e-12);
+  // The measurement option: photon power alone, whatever the camera sees or the photons did.
+  EmissionSelection power;
+  power.configure({{100, false, 1, 0}, {100, false, 100, 0}, {5, true, 1, 0}}, false, false);
+  for (int i = 0; i < 100; ++i) power.count(0, true), power.count(1, false);
+  EXPECT_NEAR(power.probabilities()[0], 100.0 / 205.0, 1e-12);
+  EXPECT_NEAR(power.probabilities()[2], 5.0 / 205.0, 1e-12);
 }
 
 TEST(CausticsEmissionSelection, AdaptationShrinksCountsAndKeepsADefensiveShare) {
