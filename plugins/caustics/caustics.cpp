@@ -124,7 +124,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     // the switch off too (then the path tracer's share of that light).
     classify_ = caustics_can_form && ids().diverted != NIMBUS_ELEMENT_INVALID;
     ScheduleConfig cfg;
-    cfg.camera_paths = std::max<uint64_t>(1, uint64_t(width_) * height_);
+    cfg.camera_paths = cfg.frame_pixels = std::max<uint64_t>(1, uint64_t(width_) * height_);
     schedule_ = PhotonSchedule(cfg);
     useful_.reset(armed_ ? size_t(width_) * height_ : 0);
     pass_.release();

@@ -39,6 +39,10 @@ struct ScheduleConfig {
   uint64_t n_min = uint64_t(1) << 10;
   uint64_t probe = uint64_t(1) << 16;  // the first pass
   uint64_t camera_paths = 1;           // camera paths per iteration (the render region's pixels)
+  // The whole frame's pixels (0: camera_paths). A pass's size follows the frame, not the region: a small
+  // render region still gets the large batches that guiding needs (paper 3.3), each map serving more
+  // iterations, so photon paths per camera path stay at rho.
+  uint64_t frame_pixels = 0;
 };
 
 // Camera passes a photon map serves at least (see pass_done).
@@ -88,7 +92,8 @@ class PhotonSchedule {
     if (iteration < next_pass_) return 0;
     if (passes_ == 0) return cfg_.probe;
     if (idle_ > 0) return cfg_.n_min;
-    const double n = std::round(rho_ * double(kMinIterationsPerMap) * double(cfg_.camera_paths));
+    const double pixels = double(std::max(cfg_.frame_pixels, cfg_.camera_paths));
+    const double n = std::round(rho_ * double(kMinIterationsPerMap) * pixels);
     return uint64_t(std::clamp(n, double(cfg_.n_min), double(cfg_.n_max)));
   }
 
