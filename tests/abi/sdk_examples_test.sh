@@ -5,14 +5,18 @@
 # the package's version rule (find_package(Nimbus 1.0) works, a newer minor or another major does not),
 # build the out-of-tree examples (plugins/examples/, find_package(Nimbus 1.x REQUIRED)) against that
 # prefix and against the build tree (-DNimbus_DIR=<build>), install them, check they export only the
-# entry, load them with `nimbus plugins` and render a scene with each. Any step failing fails the test;
-# exit 77 means "cannot run in this configuration" (ctest: skipped).
+# entry, load them with `nimbus plugins` (each listed with its kind) and render a scene with each
+# integrator (a guide renders only when an integrator binds it). Any step failing fails the test; exit 77
+# means "cannot run in this configuration" (ctest: skipped).
 set -euo pipefail
 
 build=$1 src=$2 cmake=$3 generator=$4 make_program=$5 cc=$6 cxx=$7 sanitize=${8:-OFF} nm=${9:-nm}
 nimbus=$build/bin/nimbus
-examples=(c-minimal:org.example.normals:example_normals cpp-minimal:org.example.eyelight:example_eyelight
-  cpp-camera-path:org.example.balance:example_balance)
+# directory:plugin id:library target:kind as `nimbus plugins` lists it
+examples=(c-minimal:org.example.normals:example_normals:integrator
+  cpp-minimal:org.example.eyelight:example_eyelight:integrator
+  cpp-camera-path:org.example.balance:example_balance:integrator
+  c-guide:org.example.independence:example_independence:guiding)
 
 if [[ ! -x $nimbus ]]; then
   echo "SKIP: $nimbus is not built" >&2
@@ -84,7 +88,7 @@ done
 
 plugins=$work/plugins-prefix
 for ex in "${examples[@]}"; do
-  IFS=: read -r dir id target <<<"$ex"
+  IFS=: read -r dir id target kind <<<"$ex"
   # The build tree's package (Nimbus_DIR=<build>): configure and build, headers from the source tree.
   step "configure and build $dir against the build tree"
   env -u CMAKE_PREFIX_PATH -u Nimbus_DIR "$cmake" -S "$src/plugins/examples/$dir" -B "$work/buildtree-$dir" \
@@ -116,13 +120,14 @@ export NIMBUS_PLUGIN_PATH=$plugins/lib/nimbus/plugins
 listing=$("$nimbus" plugins 2>&1 || true)
 echo "$listing"
 for ex in "${examples[@]}"; do
-  IFS=: read -r dir id target <<<"$ex"
-  grep -Eq "^$id +integrator +[0-9.]+ +loaded +$NIMBUS_PLUGIN_PATH/lib$target.so$" <<<"$listing" ||
-    fail "$id is not listed as loaded from $NIMBUS_PLUGIN_PATH"
+  IFS=: read -r dir id target kind <<<"$ex"
+  grep -Eq "^$id +$kind +[0-9.]+ +loaded +$NIMBUS_PLUGIN_PATH/lib$target.so$" <<<"$listing" ||
+    fail "$id is not listed as a loaded $kind from $NIMBUS_PLUGIN_PATH"
 done
 
 for ex in "${examples[@]}"; do
-  IFS=: read -r dir id target <<<"$ex"
+  IFS=: read -r dir id target kind <<<"$ex"
+  [[ $kind == integrator ]] || continue
   step "render with $id"
   out=$work/$target.exr
   "$nimbus" render "$src/tests/scenes/abi-cornell.yaml" --integrator "$id" --iterations 1 -q -o "$out" ||
@@ -131,4 +136,4 @@ for ex in "${examples[@]}"; do
   grep -aq "$id" "$out" || fail "$out does not record $id as its integrator"
 done
 ok=1
-echo "the examples built against the installed SDK and the build tree, loaded and rendered"
+echo "the examples built against the installed SDK and the build tree, loaded, and the integrators rendered"
