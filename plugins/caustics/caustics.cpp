@@ -139,9 +139,10 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   nimbus_status_t begin_iteration(uint64_t iteration) override {
     if (!armed_) return NIMBUS_OK;
     const uint64_t paths = schedule_.plan(iteration);
-    if (paths == 0 && rebuild_map_) {
+    if (rebuild_map_) {
       // A resumed render: the map of the last pass, from the same arguments (photon_pass is deterministic)
-      // and the same light selection, with the lookups' flags on its paths as they were saved.
+      // and the same light selection, with the lookups' flags on its paths as they were saved. Traced
+      // even when a new pass is due now: the new pass's light selection and guiding count its paths.
       emitters_.set_selection(emission_selection_.probabilities());
       PhotonPass::Result result;
       if (nimbus_status_t s = photon_pass(schedule_.passes(), map_request_, map_reach_, result);
