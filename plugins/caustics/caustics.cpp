@@ -31,13 +31,15 @@ const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, "nimbus.host.tasks
 const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix",
                                  "default-guide=nimbus.guide.metropolis", nullptr};
 // The switch, and two choices kept for measurement (docs/performance.md compares against them).
-const char *const kEmissionChoices[] = {"guided", "uniform", nullptr};
+const char *const kEmissionChoices[] = {"uniform", "guided", nullptr};
 const char *const kSelectionChoices[] = {"adaptive", "power", nullptr};
+// Uniform emission is the default: guided passes have not yet rendered lower error at equal iterations on
+// any caustic scene (docs/performance.md §5).
 const nimbus_option_decl_t kOptions[] = {
     {"caustics", NIMBUS_OPTION_SWITCH, 0, "on", nullptr,
      "caustics by photon merging; off renders exactly what nimbus.pt renders"},
-    {"photon_emission", NIMBUS_OPTION_CHOICE, 0, "guided", kEmissionChoices,
-     "for measurement: photon paths guided by the bound guide where most are wasted, or always uniform"},
+    {"photon_emission", NIMBUS_OPTION_CHOICE, 0, "uniform", kEmissionChoices,
+     "photon paths uniform, or chosen by the bound guide's chains (Metropolis photon guiding)"},
     {"photon_light_selection", NIMBUS_OPTION_CHOICE, 0, "adaptive", kSelectionChoices,
      "for measurement: lights chosen for photons by camera distance and usefulness, or by power alone"}};
 
@@ -71,7 +73,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     enabled_ = !caustics || std::strcmp(caustics, "off") != 0;
     const char *emission = sdk::option_value(setup, "photon_emission");
     const char *selection = sdk::option_value(setup, "photon_light_selection");
-    uniform_emission_ = emission && std::strcmp(emission, "uniform") == 0;
+    uniform_emission_ = !emission || std::strcmp(emission, "guided") != 0;
     power_selection_ = selection && std::strcmp(selection, "power") == 0;
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
     seed_ = setup.seed;
@@ -129,7 +131,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     useful_.reset(armed_ ? size_t(width_) * height_ : 0);
     pass_.release();
     map_active_ = rebuild_map_ = false;
-    guide_wanted_ = true;
     map_request_ = 0, map_reach_ = 0, photon_work_ = 0;
     roulette_ = {};
     stats_ = {};
@@ -155,15 +156,10 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     if (paths > 0) {
       const auto t0 = std::chrono::steady_clock::now();
       // The last map's uniform paths and whether lookups used them adapt the light selection (spec 6.1).
-      uint64_t uniform_paths = 0, uniform_used = 0;
       pass_.path_use().for_each([&](uint32_t light, bool uniform, bool used) {
-        if (uniform) emission_selection_.count(light, used), ++uniform_paths, uniform_used += used ? 1 : 0;
+        if (uniform) emission_selection_.count(light, used);
         stats_.used_paths += used ? 1 : 0;
       });
-      // Guiding pays where most photon paths are wasted. A pass gives half its paths to chains, whose
-      // correlated samples count about a third each: with a share f of useful uniform paths, guided
-      // passes get ~f/2 + 1/6 useful samples per path against f, so they guide only below f = 1/3.
-      guide_wanted_ = double(uniform_used) < kGuideBelowUsedShare * double(uniform_paths);
       emitters_.set_selection(emission_selection_.probabilities());
       map_request_ = paths, map_reach_ = PhotonPass::filter_reach(lookup_radii_);
       PhotonPass::Result result;
@@ -325,8 +321,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     const PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth());
     // Guided once some lookup has marked where the camera needs photons; a resumed render's rebuild finds
     // the frozen map its pass used in the saved state.
-    if (!rebuild_map_)
-      pass_importance_ = guide_ && guide_wanted_ ? importance_ : ImportanceMap(scene_center_, scene_radius_);
+    if (!rebuild_map_) pass_importance_ = guide_ ? importance_ : ImportanceMap(scene_center_, scene_radius_);
     if (guide_ && !pass_importance_.empty()) {
       if (nimbus_status_t s = pass_.run_guided(tracer, guide_, pass_importance_, tasks_, h, seed_, pass,
                                                paths, filter_reach, result);
@@ -383,8 +378,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   ImportanceMap importance_;              // every successful lookup's mark so far (spec 6.3)
   ImportanceMap pass_importance_;         // the copy the current map's pass was guided by
   EmissionSelection emission_selection_;  // light selection for photon emission (spec 6.1)
-  static constexpr double kGuideBelowUsedShare = 1.0 / 3.0;
-  bool guide_wanted_ = true;  // the last map's uniform paths were mostly wasted: guide the next pass
   bool uniform_emission_ = false, power_selection_ = false;  // the measurement options
   std::vector<uint64_t> pending_used_;  // a resumed map's lookup flags, until it is traced again
   bool map_active_ = false;

@@ -29,6 +29,7 @@ struct RenderRequest {
   std::vector<std::string> elements;
   std::vector<std::pair<std::string, std::string>> options;  // integrator options, e.g. caustics=on
   std::string light_sampler;                                 // empty: the host's choice
+  std::string guide;                                         // empty: the integrator's default
   double target_error = 0;                                   // > 0: stop at this estimated relMSE
 };
 
@@ -59,6 +60,7 @@ class SceneRenderer {
     opt.threads = r.threads;
     opt.elements = r.elements;
     opt.light_sampler = r.light_sampler;
+    opt.guide = r.guide;
     if (r.target_error > 0) opt.target_error = r.target_error, opt.iterations.reset();
     opt.output_exr = (dir_ / ("out" + std::to_string(renders_++) + ".exr")).string();
     std::atomic<bool> cancel{false};

@@ -58,7 +58,10 @@ typedef struct nimbus_guiding_v1 {
  * was the state for). With N_u = the uniform paths and N_m = the chain steps summed over all chains, and
  * b^ = (sum of T over uniform paths) / N_u, the integrator weights a path by the balance heuristic of the
  * two techniques: (1[uniform] + m) / (N_u + N_m T(u) / b^). A proposal that is never credited weighs 0.
- * A guide that only draws uniform paths (N_m = 0) gives the plain 1 / N_u. */
+ * A guide that only draws uniform paths (N_m = 0) gives the plain 1 / N_u. The integrator may count the
+ * chain technique as N'_m = kappa N_m for a constant kappa in (0, 1] (e.g. distinct states over steps,
+ * since a chain's samples are correlated), weighting paths by (1[uniform] + kappa m) / (N_u + N'_m T / b^):
+ * any such constant keeps the estimate unbiased. */
 
 /* The kind of a traced path (nimbus_guide_tracer_t.trace). */
 #define NIMBUS_GUIDE_UNIFORM 1u
