@@ -60,9 +60,11 @@ TEST(IntegratorOptions, UnknownRenderKeyListsTheIntegratorsOptionsAndTheHostKeys
   const std::string path = box_with(dir, "  integrator: caustics\n  threads: 4\n");
   const ProcessResult r = run_nimbus({"render", path, "-q", "-o", dir.file("x.exr")}, dir);
   EXPECT_TRUE(exited_with(r, 1)) << r.describe();
-  EXPECT_TRUE(contains(r.err,
-                       "render.threads: nimbus.caustics has no option 'threads' (its options: caustics); "
-                       "the render section's own keys: resolution, iterations"))
+  EXPECT_TRUE(contains(
+      r.err,
+      "render.threads: nimbus.caustics has no option 'threads' (its options: caustics, photon_emission, "
+      "photon_light_selection); "
+      "the render section's own keys: resolution, iterations"))
       << r.err;
 }
 
