@@ -1,7 +1,7 @@
 // A weak light keeps its caustic and its LightMix layer (caustics solver spec 6.1, 8): two glass balls
-// mirror-symmetric about x = 0, each under its own point light, intensities 10^4 and 1, in their own
-// LightMix groups. With LightMix requested, NEE and photon emission keep a share per group, so the weak
-// layer scaled by 10^4 and mirrored estimates the strong layer, and converges as fast.
+// mirror-symmetric about x = 0, each under its own point light, intensities R and 1 (R = 10^4 and 10^9),
+// in their own LightMix groups. With LightMix requested, NEE and photon emission keep a share per group,
+// so the weak layer scaled by R and mirrored estimates the strong layer, and converges as fast.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,9 +16,8 @@ namespace nimbus::testing {
 namespace {
 
 constexpr int kWidth = 64, kHeight = 32;
-constexpr double kRatio = 1e4;
 
-const char *kScene = R"(
+const char *kSceneTemplate = R"(
 render: { resolution: [64, 32], max_depth: 8 }
 camera: { position: [0, 0, 4.2], look_at: [0, 0, 0], up: [0, 1, 0], fov: 70 }
 materials:
@@ -29,9 +28,18 @@ objects:
   - { shape: sphere, center: [-1.2, 0, 0.3], radius: 0.3, material: glass }
   - { shape: sphere, center: [1.2, 0, 0.3], radius: 0.3, material: glass }
 lights:
-  - { type: point, position: [-2.6, 0, 0.9], intensity: [10000, 10000, 10000], group: strong }
+  - { type: point, position: [-2.6, 0, 0.9], intensity: [STRONG, STRONG, STRONG], group: strong }
   - { type: point, position: [2.6, 0, 0.9], intensity: [1, 1, 1], group: weak }
 )";
+
+// The scene with the strong light's intensity `ratio`.
+std::string scene(double ratio) {
+  char strong[64];
+  std::snprintf(strong, sizeof strong, "%.17g", ratio);
+  std::string s = kSceneTemplate;
+  for (size_t at; (at = s.find("STRONG")) != std::string::npos;) s.replace(at, 6, strong);
+  return s;
+}
 
 // Luminance of a layer, and of the other layer mirrored in x and scaled: the weak layer's estimate of
 // the strong one.
@@ -60,7 +68,11 @@ double rel_mse(const std::vector<double> &a, const std::vector<double> &b) {
   return s / double(a.size());
 }
 
-TEST(CausticsLightMix, WeakLightLayerConvergesLikeTheStrongOne) {
+class CausticsLightMix : public ::testing::TestWithParam<double> {};
+
+TEST_P(CausticsLightMix, WeakLightLayerConvergesLikeTheStrongOne) {
+  const double kRatio = GetParam();
+  const std::string kScene = scene(kRatio);
   SceneRenderer r;
   const auto render = [&](uint64_t iterations, uint64_t seed) {
     RenderRequest q;
@@ -95,10 +107,10 @@ TEST(CausticsLightMix, WeakLightLayerConvergesLikeTheStrongOne) {
   // The strong layer's own noise: relMSE between two of its renders (2 var_s).
   const double strong_noise = rel_mse(strong_images[0], strong_images[1]);
   std::printf(
-      "strong caustic: strong layer %.5f (SE %.5f), weak layer x 1e4 mirrored %.5f (SE %.5f); "
+      "ratio %.0e, strong caustic: strong layer %.5g (SE %.5g), weak layer x ratio mirrored %.5g (SE %.5g); "
       "relMSE between them (median of 4) %.4g at 16 iterations, %.4g at 64; between two strong "
       "renders %.4g\n",
-      ms, ses, mw, sew, few, many, strong_noise);
+      kRatio, ms, ses, mw, sew, few, many, strong_noise);
   // 3 sigma of the difference of the two means (each over 4 seeds).
   EXPECT_NEAR(mw, ms, 3 * std::hypot(ses, sew));
   // The weak layer converges at the strong one's rate: NEE and photons choose the weak light with
@@ -109,6 +121,8 @@ TEST(CausticsLightMix, WeakLightLayerConvergesLikeTheStrongOne) {
   // the photon map's slower start.
   EXPECT_GT(few / many, 2.0);
 }
+
+INSTANTIATE_TEST_SUITE_P(PowerRatios, CausticsLightMix, ::testing::Values(1e4, 1e9));
 
 }  // namespace
 }  // namespace nimbus::testing
