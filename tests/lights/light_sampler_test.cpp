@@ -185,7 +185,8 @@ INSTANTIATE_TEST_SUITE_P(Samplers, LightSamplerTest,
 TEST(LightSamplers, TreeAndPowerRenderTheSameImage) {
   SceneRenderer r;
   const std::string scene = many_lights_scene();
-  RenderRequest req{.integrator = "nimbus.pt", .iterations = 128, .seed = 21};
+  RenderRequest req;
+  req.integrator = "nimbus.pt", req.iterations = 128, req.seed = 21;
   req.light_sampler = "nimbus.lights.power";
   const Rgb power = mean_rgb(r.render(scene, req).layers.at("beauty").data);
   req.light_sampler = "nimbus.lights.tree";
