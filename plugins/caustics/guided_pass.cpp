@@ -107,25 +107,21 @@ nimbus_status_t PhotonPass::run_guided(const PhotonTracer &tracer, const GuideBi
   // The mixture's totals from the paths themselves, not from the guide's report: N_u, N_m (steps on
   // states with T > 0 only: a state with T = 0 has zero density under the chain's target, so its steps
   // are not samples of it) and b^.
-  uint64_t n_u = 0, n_m = 0;
+  // The chain technique enters the balance heuristic with its distinct states, not its steps: N'_m =
+  // kappa N_m, kappa = states / steps, so that a state repeated by rejections counts once. Any constant
+  // N'_m keeps the weights a partition of unity and the estimate unbiased; counting steps trusted the
+  // correlated chain photons over the independent uniform ones (docs/performance.md §8).
+  uint64_t n_u = 0, n_m = 0, states = 0;
   double target_sum = 0;
   result = {};
   for (const PhotonChunk &c : chunks_) {
     result.traced += c.paths, result.work += c.work;
     for (const GuidedPath &p : c.guided) {
       if (p.uniform) ++n_u, target_sum += p.target;
-      if (p.target > 0) n_m += p.multiplicity;
+      if (p.target > 0) n_m += p.multiplicity, states += p.multiplicity > 0 ? 1 : 0;
     }
   }
   const double b_hat = n_u > 0 ? target_sum / double(n_u) : 0.0;
-  // The chain technique enters the balance heuristic with its distinct states, not its steps: N'_m =
-  // kappa N_m, kappa = states / steps, so that a state repeated by rejections counts once (any constant
-  // N'_m keeps the weights a partition of unity and the estimate unbiased; counting steps trusted the
-  // correlated chain photons over the independent uniform ones: 0.049 against 0.054 relMSE on a pool
-  // render region, 0.217 against 0.249 between two apartment renders).
-  uint64_t states = 0;
-  for (const PhotonChunk &c : chunks_)
-    for (const GuidedPath &p : c.guided) states += p.target > 0 && p.multiplicity > 0 ? 1 : 0;
   const double kappa = n_m > 0 ? double(states) / double(n_m) : 1.0;
   const double ratio = b_hat > 0 ? kappa * double(n_m) / (double(n_u) * b_hat) : 0.0;
   // Each path's weight relative to a uniform path's 1 / N_u: (1[uniform] + kappa m) / (1 + c T).

@@ -72,12 +72,12 @@ typedef struct nimbus_guide_tracer {
   uint32_t struct_size;
   uint32_t dims; /* length of every u the chain passes to trace */
   void *user;    /* plugin-owned (the integrator's) until run_chain returns: handed to both callbacks */
-  /* [render-thread] user borrowed. Traces the photon path of u (borrowed; dims values in [0,1)) as a path of kind
-   * `kind`, keeps its photons until the pass ends and returns its target value T >= 0 (0: it reached
+  /* [render-thread] user borrowed. Traces the photon path of u (borrowed; dims values in [0,1)) as a path of
+   * kind `kind`, keeps its photons until the pass ends and returns its target value T >= 0 (0: it reached
    * nothing the camera needs). *path (out) names the path for credit. */
   double (*trace)(void *user, const float *u, uint32_t kind, uint64_t *path);
-  /* [render-thread] user borrowed. Credits path `path` (returned by this chain's trace) with `multiplicity` chain
-   * steps. Credits to one path add up. */
+  /* [render-thread] user borrowed. Credits path `path` (returned by this chain's trace) with `multiplicity`
+   * chain steps. Credits to one path add up. */
   void (*credit)(void *user, uint64_t path, uint64_t multiplicity);
 } nimbus_guide_tracer_t;
 
