@@ -8,8 +8,8 @@
 #include <variant>
 
 #include <nimbus/cpp/alias_table.hpp>
+#include <nimbus/cpp/distribution.hpp>
 #include <nimbus/cpp/math.hpp>
-#include "core/distribution.hpp"
 #include "geometry/geometry_scene.hpp"
 
 namespace nimbus {

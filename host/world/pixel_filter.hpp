@@ -6,8 +6,8 @@
 
 #include <string>
 
+#include <nimbus/cpp/distribution.hpp>
 #include <nimbus/cpp/math.hpp>
-#include "core/distribution.hpp"
 #include "scene/pixel_filter_type.hpp"
 
 namespace nimbus {

@@ -31,7 +31,7 @@ const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, "nimbus.host.tasks
 const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix",
                                  "default-guide=nimbus.guide.metropolis", nullptr};
 // The switch, and two choices kept for measurement (docs/performance.md compares against them).
-const char *const kEmissionChoices[] = {"uniform", "guided", nullptr};
+const char *const kEmissionChoices[] = {"uniform", "adaptive-map", "guided", nullptr};
 const char *const kSelectionChoices[] = {"adaptive", "power", nullptr};
 // Uniform emission is the default: guided passes have not yet rendered lower error at equal iterations on
 // any caustic scene (docs/performance.md §5).
@@ -39,7 +39,8 @@ const nimbus_option_decl_t kOptions[] = {
     {"caustics", NIMBUS_OPTION_SWITCH, 0, "on", nullptr,
      "caustics by photon merging; off renders exactly what nimbus.pt renders"},
     {"photon_emission", NIMBUS_OPTION_CHOICE, 0, "uniform", kEmissionChoices,
-     "photon paths uniform, or chosen by the bound guide's chains (Metropolis photon guiding)"},
+     "photon paths uniform, from an emission map learnt from the paths lookups used, or chosen by the "
+     "bound guide's chains (Metropolis photon guiding)"},
     {"photon_light_selection", NIMBUS_OPTION_CHOICE, 0, "adaptive", kSelectionChoices,
      "for measurement: lights chosen for photons by camera distance and usefulness, or by power alone"}};
 
@@ -74,6 +75,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     const char *emission = sdk::option_value(setup, "photon_emission");
     const char *selection = sdk::option_value(setup, "photon_light_selection");
     uniform_emission_ = !emission || std::strcmp(emission, "guided") != 0;
+    adaptive_map_ = emission && std::strcmp(emission, "adaptive-map") == 0;
     power_selection_ = selection && std::strcmp(selection, "power") == 0;
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
     seed_ = setup.seed;
@@ -120,6 +122,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     emission_selection_.configure(emitters_.selection_inputs(Vec3f::load(eye.org)), ids().lightmix,
                                   !power_selection_);
     emitters_.set_selection(emission_selection_.probabilities());
+    emitters_.reset_emission_map(adaptive_map_);
     pending_used_.clear();
     armed_ = enabled_ && caustics_can_form;
     // The `caustics` element is the light of a class of paths (spec 8), with or without a map, and with
@@ -156,11 +159,14 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     if (paths > 0) {
       const auto t0 = std::chrono::steady_clock::now();
       // The last map's uniform paths and whether lookups used them adapt the light selection (spec 6.1).
-      pass_.path_use().for_each([&](uint32_t light, bool uniform, bool used) {
-        if (uniform) emission_selection_.count(light, used);
+      // So do they the emission map's densities (photon_emission: adaptive-map).
+      EmissionMap &map = emitters_.emission_map();
+      pass_.path_use().for_each([&](uint32_t light, uint32_t cell, bool uniform, bool used) {
+        if (uniform) emission_selection_.count(light, used), map.count(cell, used);
         stats_.used_paths += used ? 1 : 0;
       });
       emitters_.set_selection(emission_selection_.probabilities());
+      map.update();
       map_request_ = paths, map_reach_ = PhotonPass::filter_reach(lookup_radii_);
       PhotonPass::Result result;
       if (nimbus_status_t s = photon_pass(schedule_.passes() + 1, paths, map_reach_, result); s != NIMBUS_OK)
@@ -244,10 +250,10 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
 
   void end_render(nimbus_status_t) override {
     if (progress_ && enabled_)
-      stats_.report(
-          progress_, host().get(),
-          {schedule_.photon_ratio(), roulette_.probability(kFirstLookup), roulette_.probability(kLaterLookup),
-           double(importance_.cells()), double(sizeof(Photon))});
+      stats_.report(progress_, host().get(),
+                    {schedule_.photon_ratio(), roulette_.probability(kFirstLookup),
+                     roulette_.probability(kLaterLookup), double(importance_.cells()), double(sizeof(Photon)),
+                     double(emitters_.emission_map().slots_learnt())});
     pass_.release();
   }
 
@@ -265,6 +271,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     roulette_.save(w);
     importance_.save(w), pass_importance_.save(w);
     emission_selection_.save(w);
+    emitters_.emission_map().save(w);
     const std::vector<uint64_t> used = pass_.path_use().used_bits();
     w.put(uint64_t(used.size()));
     for (uint64_t b : used) w.put(b);
@@ -287,19 +294,22 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     LookupRoulette roulette;
     ImportanceMap importance = importance_, pass_importance = pass_importance_;
     EmissionSelection selection = emission_selection_;
+    EmissionMap emission_map = emitters_.emission_map();
     uint64_t used_words = 0;
     std::vector<uint64_t> used;
     SolverStats stats;
     if (!(schedule.restore(r) && r.get(work) && r.get(request) && r.get(reach) &&
           r.get_array(radii.counts()) && useful.restore(r) && roulette.restore(r) && importance.restore(r) &&
-          pass_importance.restore(r) && selection.restore(r) && r.get(used_words) &&
-          used_words <= (1u << 26)))
+          pass_importance.restore(r) && selection.restore(r) && emission_map.restore(r) &&
+          r.get(used_words) && used_words <= (1u << 26)))
       return NIMBUS_E_INVALID_ARG;
     used.resize(used_words);
     for (uint64_t &b : used)
       if (!r.get(b)) return NIMBUS_E_INVALID_ARG;
     if (!(r.get(stats) && r.done())) return NIMBUS_E_INVALID_ARG;
     emission_selection_ = std::move(selection), pending_used_ = std::move(used);
+    emitters_.emission_map() = std::move(emission_map);
+    emitters_.emission_map().update();  // the densities the current map was traced with
     schedule_ = schedule, photon_work_ = work, map_request_ = request, map_reach_ = reach;
     roulette_ = roulette;
     importance_ = std::move(importance), pass_importance_ = std::move(pass_importance);
@@ -378,13 +388,13 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   ImportanceMap importance_;              // every successful lookup's mark so far (spec 6.3)
   ImportanceMap pass_importance_;         // the copy the current map's pass was guided by
   EmissionSelection emission_selection_;  // light selection for photon emission (spec 6.1)
-  bool uniform_emission_ = false, power_selection_ = false;  // the measurement options
+  bool uniform_emission_ = false, adaptive_map_ = false, power_selection_ = false;  // measurement options
   std::vector<uint64_t> pending_used_;  // a resumed map's lookup flags, until it is traced again
   bool map_active_ = false;
   UsefulPixels useful_;
   LookupRoulette roulette_;
   // The format of save_state's bytes.
-  static constexpr uint32_t kStateVersion = 3;
+  static constexpr uint32_t kStateVersion = 4;
   SolverStats stats_;
 };
 

@@ -2,6 +2,7 @@
 // sharp geometry (projection maps, solver spec 6.2).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include <nimbus/cpp/math.hpp>
@@ -24,6 +25,16 @@ struct EmissionCone {
   }
   Vec3f sample(float u0, float u1) const {
     return Frame::from_normal(axis).to_world(sample_uniform_cone_narrow(u0, u1, one_minus_cos));
+  }
+  // The (u0, u1) that sample() maps to the unit direction w, which the cone contains (the adaptive
+  // emission map's coordinates, emission_map.hpp).
+  Vec2f invert(const Vec3f &w) const {
+    const Vec3f l = Frame::from_normal(axis).to_local(w);
+    const float t = (l.x * l.x + l.y * l.y) / (1.0f + std::max(l.z, 0.0f));  // 1 - cos, no cancellation
+    float phi = std::atan2(l.y, l.x);
+    if (phi < 0) phi += 2.0f * kPi;
+    constexpr float kBelowOne = 0x1.fffffep-1f;
+    return {std::min(t / one_minus_cos, kBelowOne), std::min(phi / (2.0f * kPi), kBelowOne)};
   }
   // The cone of directions from `from` that covers the sphere (center, radius); inactive when `from` is
   // inside the sphere (every direction may reach it).

@@ -17,6 +17,8 @@
 //   environment: directions from environment_emission.hpp (the bright parts of the map only; a uniform
 //          map emits nothing, so its P_sel is 0 and no merge technique exists for it), origins as the
 //          sun's on the targets' disk.
+// With photon_emission: adaptive, each cone and each targets' disk or rectangle also has a learnt density
+// over its two numbers (emission_map.hpp); both sides read it through the same inversions.
 #pragma once
 
 #include <nimbus/lights.h>
@@ -30,6 +32,7 @@
 #include <nimbus/cpp/sampling.hpp>
 
 #include "emission_cone.hpp"
+#include "emission_map.hpp"
 #include "emission_selection.hpp"
 #include "environment_emission.hpp"
 #include "sharp_targets.hpp"
@@ -51,15 +54,15 @@ struct Aim {
 
 struct Emitter {
   EmitterKind kind = EmitterKind::Point;
-  uint32_t flags = 0;
-  uint32_t group = 0;
+  uint32_t flags = 0, group = 0;
   float power = 0;
-  Vec3f axis;              // spot: the cone axis; sun: the direction photons travel
-  float cos_theta_e = -1;  // spot / sun cone
-  Vec3f position;          // point, spot; area: the centre of its bounds
-  Vec3f lo, hi;            // world bounds (finite lights)
-  float own = 1;           // share of the light's own emission (finite) or of the scene's disk (sun)
-  std::vector<Aim> aims;   // finite lights: the cones towards the targets
+  Vec3f axis;               // spot: the cone axis; sun: the direction photons travel
+  float cos_theta_e = -1;   // spot / sun cone
+  Vec3f position;           // point, spot; area: the centre of its bounds
+  Vec3f lo, hi;             // world bounds (finite lights)
+  float own = 1;            // share of the light's own emission (finite) or of the scene's disk (sun)
+  uint32_t first_slot = 0;  // its first emission-map slot: one per aim (finite), one for the targets' disk
+  std::vector<Aim> aims;    // finite lights: the cones towards the targets
   // sun: 1 / the area of the targets' disk or rectangle; the rectangle [s0, s1] x [t0, t1] around the
   // targets' centre lies in the plane perpendicular to each direction w, in the basis of w whose s axis
   // follows rect_s; unused (the disk) where the disk is smaller.
@@ -108,6 +111,7 @@ class EmitterSet {
     std::vector<double> w(emitters_.size(), 0.0);
     environments_.clear();
     environments_.resize(emitters_.size());
+    slots_ = 0;
     for (size_t i = 0; i < emitters_.size(); ++i) {
       Emitter &e = emitters_[i];
       if (e.kind == EmitterKind::Environment) {
@@ -124,6 +128,8 @@ class EmitterSet {
       // share: its photons can only reach sharp geometry by a bounce, which path tracing samples.
       const bool aims = e.infinite() ? e.own < 1 : !e.aims.empty();
       w[i] = double(e.power) * (aims || targets_.empty() ? 1.0 : double(kOwnShare));
+      e.first_slot = slots_;
+      slots_ += e.infinite() ? (e.own < 1 ? 1 : 0) : uint32_t(e.aims.size());
     }
     rule_ = std::move(w);
     table_ = AliasTable(rule_);
@@ -144,6 +150,9 @@ class EmitterSet {
   }
   // The selection probabilities of the next photon map (both sides read them until the one after).
   void set_selection(const std::vector<double> &p) { table_ = AliasTable(p); }
+  // [main-thread] A new render's emission map, learning (adaptive) or uniform (emission_map.hpp).
+  void reset_emission_map(bool adaptive) { map_.configure(slots_, adaptive); }
+  EmissionMap &emission_map() { return map_; }
 
   bool emits_photons() const { return !table_.empty(); }
   size_t size() const { return emitters_.size(); }
@@ -153,18 +162,22 @@ class EmitterSet {
   int64_t pick(float u, float *pmf) const { return table_.sample(u, pmf); }
 
   // Finite light `l` emitting from `z`: the direction of the component that `u_mix` picks, from (u0, u1)
-  // for a cone, or `own` (the host's sampled direction) for the light's own emission and for a cone
-  // whose target contains z.
-  Vec3f sample_direction(uint32_t l, const Vec3f &z, float u_mix, float u0, float u1,
-                         const Vec3f &own) const {
+  // through the emission map for a cone, or `own` (the host's sampled direction) for the light's own
+  // emission and for a cone whose target contains z. *cell: the emission map's cell (path_use.hpp).
+  Vec3f sample_direction(uint32_t l, const Vec3f &z, float u_mix, float u0, float u1, const Vec3f &own,
+                         uint32_t *cell = nullptr) const {
     const Emitter &e = emitters_[l];
     float c = e.own;
     if (u_mix < c) return own;
-    for (const Aim &a : e.aims) {
+    for (size_t i = 0; i < e.aims.size(); ++i) {
+      const Aim &a = e.aims[i];
       c += a.share;
-      if (u_mix < c || &a == &e.aims.back()) {
+      if (u_mix < c || i + 1 == e.aims.size()) {
         const EmissionCone cone = cone_of(e, a, z);
-        return cone.active() ? cone.sample(u0, u1) : own;
+        if (!cone.active()) return own;
+        const uint32_t code = map_.warp(e.first_slot + uint32_t(i), u0, u1);
+        if (cell) *cell = code;
+        return cone.sample(u0, u1);
       }
     }
     return own;
@@ -180,19 +193,35 @@ class EmitterSet {
   float pdf_dir(uint32_t l, const Vec3f &z, const Vec3f &w, float own_pdf) const {
     const Emitter &e = emitters_[l];
     float p = e.own * own_pdf;
-    for (const Aim &a : e.aims) {
+    for (size_t i = 0; i < e.aims.size(); ++i) {
+      const Aim &a = e.aims[i];
       const EmissionCone cone = cone_of(e, a, z);
-      p += a.share * (!cone.active() ? own_pdf : cone.contains(w) ? cone.pdf() : 0.0f);
+      if (!cone.active()) {
+        p += a.share * own_pdf;
+      } else if (cone.contains(w)) {
+        const uint32_t slot = e.first_slot + uint32_t(i);
+        float map = 1;
+        if (map_.learnt(slot)) {
+          const Vec2f u = cone.invert(w);
+          map = map_.pdf(slot, u.x, u.y);
+        }
+        p += a.share * cone.pdf() * map;
+      }
     }
     return p;
   }
 
-  // A photon origin of the sun `l` sending light along `w`: on the targets' disk or rectangle, or (with
-  // probability own) on the scene's disk, from two uniform numbers (disks: the host's concentric map),
-  // outside the scene's bounding sphere.
-  Vec3f emission_origin(uint32_t l, const Vec3f &w, float u_mix, float u0, float u1) const {
+  // A photon origin of the sun `l` sending light along `w`: on the targets' disk or rectangle (through
+  // the emission map), or (with probability own) on the scene's disk, from two uniform numbers (disks:
+  // the host's concentric map), outside the scene's bounding sphere. *cell: the emission map's cell.
+  Vec3f emission_origin(uint32_t l, const Vec3f &w, float u_mix, float u0, float u1,
+                        uint32_t *cell = nullptr) const {
     const Emitter &e = emitters_[l];
     const bool scene_disk = u_mix < e.own;
+    if (!scene_disk) {
+      const uint32_t code = map_.warp(e.first_slot, u0, u1);
+      if (cell) *cell = code;
+    }
     const Vec3f &center = scene_disk ? scene_center_ : targets_.all.sphere.center;
     const float back = scene_radius_ + length(center - scene_center_) + disk_radius();
     if (!scene_disk && e.use_rect) {
@@ -213,7 +242,10 @@ class EmitterSet {
   float sun_pdf_pos(uint32_t l, const Vec3f &p, const Vec3f &w) const {
     const Emitter &e = emitters_[l];
     const float scene = e.own / (kPi * sqr(scene_radius_));
-    return e.own < 1 && on_target(e, p, w) ? scene + (1 - e.own) * e.pdf_pos : scene;
+    Vec2f u;
+    if (!(e.own < 1) || !target_coords(e, p, w, u)) return scene;
+    const float map = map_.learnt(e.first_slot) ? map_.pdf(e.first_slot, u.x, u.y) : 1.0f;
+    return scene + (1 - e.own) * e.pdf_pos * map;
   }
 
   // lp for light `l` emitting from `z` (area lights: with surface normal `n`) along the unit direction
@@ -260,14 +292,23 @@ class EmitterSet {
     return EmissionCone::towards(z, s.center, s.radius);
   }
   float disk_radius() const { return targets_.all.sphere.radius; }
-  bool on_target(const Emitter &e, const Vec3f &p, const Vec3f &w) const {
+  // Whether the line through p along w crosses the targets' rectangle or disk; u: the numbers
+  // emission_origin maps there (the emission map's coordinates, computed for a learnt map only).
+  bool target_coords(const Emitter &e, const Vec3f &p, const Vec3f &w, Vec2f &u) const {
     const Vec3f d = p - targets_.all.sphere.center;
     if (e.use_rect) {
       const Frame f = Frame::from_normal_tangent(w, e.rect_s);
       const float a = dot(d, f.s), b = dot(d, f.t);
-      return a >= e.rect[0] && a <= e.rect[1] && b >= e.rect[2] && b <= e.rect[3];
+      if (!(a >= e.rect[0] && a <= e.rect[1] && b >= e.rect[2] && b <= e.rect[3])) return false;
+      u = Vec2f{(a - e.rect[0]) / (e.rect[1] - e.rect[0]), (b - e.rect[2]) / (e.rect[3] - e.rect[2])};
+      return true;
     }
-    return length_squared(d - w * dot(d, w)) <= sqr(disk_radius());
+    if (!(length_squared(d - w * dot(d, w)) <= sqr(disk_radius()))) return false;
+    if (map_.learnt(e.first_slot)) {
+      const Frame f = Frame::from_normal(-w);
+      u = invert_uniform_disk_concentric(Vec2f{dot(d, f.s) / disk_radius(), dot(d, f.t) / disk_radius()});
+    }
+    return true;
   }
 
   // The projection map of a point, spot or area light: cones from its position towards each target it
@@ -346,6 +387,8 @@ class EmitterSet {
   std::vector<Emitter> emitters_;
   std::vector<std::unique_ptr<const EnvironmentEmission>> environments_;  // per light; environments only
   SharpTargets targets_;
+  uint32_t slots_ = 0;  // emission-map slots of all lights
+  EmissionMap map_;
   const nimbus_host_t *host_ = nullptr;
   const nimbus_host_lights_v1_t *lights_ = nullptr;
   std::vector<double> rule_;  // photon power of each light (selection_inputs)

@@ -37,6 +37,7 @@ double trace_path(void *user, const float *u, uint32_t kind, uint64_t *path) {
     rec.target = c.tracer->trace(*c.ctx, samples, 0, 0, c.importance, chunk);
   } else {
     chunk.path_light.push_back(kNoLight);
+    chunk.path_emission.push_back(kNoEmissionCell);
   }
   if (!rec.uniform) chunk.path_light.back() |= kProposalPath;
   rec.count = uint32_t(chunk.photons.size()) - rec.first;

@@ -1,7 +1,8 @@
 // Which photon paths of the current map were used (solver spec 6.1): the light each path of the pass was
-// emitted from, whether it was a uniform sample (guided proposals are not), and a flag a camera lookup
-// sets when one of the path's photons contributed. Light selection counts the uniform paths per light,
-// and those used, when the next pass begins; the flags survive a checkpoint so a resumed render counts
+// emitted from, its emission-map cell, whether it was a uniform sample (guided proposals are not), and a
+// flag a camera lookup sets when one of the path's photons contributed. Light selection counts the
+// uniform paths per light, and those used, when the next pass begins (the adaptive emission map the
+// used ones per cell); the flags survive a checkpoint so a resumed render counts
 // what an uninterrupted one counts.
 #pragma once
 
@@ -19,9 +20,10 @@ inline constexpr uint32_t kProposalPath = 0x80000000u;
 
 class PathUse {
  public:
-  // [main-thread] The paths of a new map, none used yet.
-  void reset(std::vector<uint32_t> lights) {
-    lights_ = std::move(lights);
+  // [main-thread] The paths of a new map (their lights and emission cells), none used yet.
+  void reset(std::vector<uint32_t> lights, std::vector<uint32_t> cells) {
+    lights_ = std::move(lights), cells_ = std::move(cells);
+    cells_.resize(lights_.size(), 0xffffffffu);
     used_ = std::make_unique<std::atomic<uint8_t>[]>(lights_.size());
     for (size_t i = 0; i < lights_.size(); ++i) used_[i].store(0, std::memory_order_relaxed);
   }
@@ -31,13 +33,13 @@ class PathUse {
     std::atomic<uint8_t> &f = used_[path];
     if (f.load(std::memory_order_relaxed) == 0) f.store(1, std::memory_order_relaxed);
   }
-  // [main-thread] f(light, uniform, used) for every path that emitted.
+  // [main-thread] f(light, cell, uniform, used) for every path that emitted.
   template <class F>
   void for_each(F &&f) const {
     for (size_t i = 0; i < lights_.size(); ++i) {
       const uint32_t light = lights_[i] & ~kProposalPath;
       if (light != kNoLight)
-        f(light, (lights_[i] & kProposalPath) == 0, used_[i].load(std::memory_order_relaxed) != 0);
+        f(light, cells_[i], (lights_[i] & kProposalPath) == 0, used_[i].load(std::memory_order_relaxed) != 0);
     }
   }
   size_t size() const { return lights_.size(); }
@@ -58,6 +60,7 @@ class PathUse {
 
  private:
   std::vector<uint32_t> lights_;
+  std::vector<uint32_t> cells_;
   std::unique_ptr<std::atomic<uint8_t>[]> used_;
 };
 

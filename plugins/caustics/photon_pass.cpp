@@ -63,14 +63,15 @@ void PhotonPass::assemble(const sdk::ParallelFor &parallel, float filter_reach) 
     path_offset[i + 1] = path_offset[i] + chunks_[i].path_light.size();
   }
   photons_.resize(offset.back());
-  std::vector<uint32_t> lights(path_offset.back());
+  std::vector<uint32_t> lights(path_offset.back()), cells(path_offset.back());
   parallel(chunks_.size(), [&](size_t i) {
     const PhotonChunk &c = chunks_[i];
     Photon *out = photons_.data() + offset[i];
     for (const Photon &ph : c.photons) *out = ph, (out++)->path = ph.path + uint32_t(path_offset[i]);
     std::copy(c.path_light.begin(), c.path_light.end(), lights.begin() + ptrdiff_t(path_offset[i]));
+    std::copy(c.path_emission.begin(), c.path_emission.end(), cells.begin() + ptrdiff_t(path_offset[i]));
   });
-  use_.reset(std::move(lights));
+  use_.reset(std::move(lights), std::move(cells));
   map_.build(photons_, parallel, filter_reach);
 }
 

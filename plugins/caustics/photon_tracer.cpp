@@ -42,6 +42,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
   float sel = 0;
   const uint32_t path_index = uint32_t(out.path_light.size());
   out.path_light.push_back(kNoLight);
+  out.path_emission.push_back(kNoEmissionCell);
   const int64_t li = emitters_.pick(samples.next(), &sel);
   if (li < 0 || !(sel > 0)) return target;
   const uint32_t light = uint32_t(li);
@@ -81,10 +82,10 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
     dir0 = -s.dir, Le = Rgb::load(L), pdf_dir = s.pdf;
   }
   if (infinite) {
-    org = emitters_.emission_origin(light, dir0, u_mix, ue[0], ue[1]);
+    org = emitters_.emission_origin(light, dir0, u_mix, ue[0], ue[1], &out.path_emission[path_index]);
     pdf_pos = emitters_.sun_pdf_pos(light, org, dir0);
   } else {
-    dir0 = emitters_.sample_direction(light, org, u_mix, ue[2], ue[3], dir0);
+    dir0 = emitters_.sample_direction(light, org, u_mix, ue[2], ue[3], dir0, &out.path_emission[path_index]);
     pdf_dir = emitters_.finite_pdf_dir(light, org, n_e, dir0);
     if (dir0 != Vec3f::load(es.dir)) Le = emitted(light, es, dir0);
   }

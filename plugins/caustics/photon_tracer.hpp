@@ -34,12 +34,16 @@ struct GuidedPath {
 // workers update their chunks on every path.
 struct alignas(sdk::kCacheLineBytes) PhotonChunk {
   std::vector<Photon> photons;
-  std::vector<GuidedPath> guided;    // a chain's paths, in the order traced (guided passes only)
-  std::vector<uint32_t> path_light;  // every traced path's light (path_use.hpp), in the order traced
-  uint64_t paths = 0;                // completed paths
-  uint64_t work = 0;                 // budget work units (schedule.hpp)
+  std::vector<GuidedPath> guided;       // a chain's paths, in the order traced (guided passes only)
+  std::vector<uint32_t> path_light;     // every traced path's light (path_use.hpp), in the order traced
+  std::vector<uint32_t> path_emission;  // and its emission-map cell (emission_map.hpp)
+  uint64_t paths = 0;                   // completed paths
+  uint64_t work = 0;                    // budget work units (schedule.hpp)
   // Empty for the next pass, keeping the buffers' memory.
-  void reset() { photons.clear(), guided.clear(), path_light.clear(), paths = 0, work = 0; }
+  void reset() {
+    photons.clear(), guided.clear(), path_light.clear(), path_emission.clear();
+    paths = 0, work = 0;
+  }
 };
 
 // Random-number stream of photon path p of photon pass j: derive(p, j, kStreamPhoton).

@@ -19,6 +19,7 @@ struct SolverStats {
   // probabilities, the importance map's size, and a photon's size in bytes.
   struct Final {
     double photon_ratio = 0, lookup_first = 1, lookup_later = 1, importance_cells = 0, photon_size = 0;
+    double emission_slots = 0;  // projection-map components with a learnt emission density
   };
 
   // [main-thread]
@@ -37,6 +38,7 @@ struct SolverStats {
     progress->stat_add(h, "caustics_guided_passes", double(guided_passes));
     progress->stat_add(h, "caustics_guide_acceptance", ratio(accepted, proposals));
     progress->stat_add(h, "caustics_importance_cells", f.importance_cells);
+    progress->stat_add(h, "caustics_emission_map_slots", f.emission_slots);
     // Share of the traced photon paths (of finished maps) whose photons some lookup used.
     progress->stat_add(h, "caustics_used_path_fraction", ratio(used_paths, photon_paths));
     // The lookup roulette's final probabilities (lookup_roulette.hpp).

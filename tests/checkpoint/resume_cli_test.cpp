@@ -104,11 +104,11 @@ TEST(Resume, SplattingIntegratorResumesExactly) {
   expect_identical(full, part);
 }
 
-TEST(Resume, CausticsSolverResumesExactlyWithItsLearntState) {
-  // The caustics solver learns as it renders (photon budget, pass schedule, per-pixel variances), so a
-  // resumed render equals an uninterrupted one only with that state restored and the current photon
-  // map traced again. The box at 192x144 makes a photon pass every few iterations; 9 falls inside a map's
-  // service, and the resumed part runs on one thread.
+// The caustics solver learns as it renders (photon budget, pass schedule, per-pixel variances, light
+// selection, the emission map), so a resumed render equals an uninterrupted one only with that state
+// restored and the current photon map traced again. The box at 192x144 makes a photon pass every few
+// iterations; 9 falls inside a map's service, and the resumed part runs on one thread.
+void expect_caustics_solver_resumes_exactly(const std::vector<std::string> &options) {
   TestDir dir;
   std::string text = read_bytes(scene("box.yaml"));
   const auto replace = [&](const std::string &from, const std::string &to) {
@@ -127,6 +127,7 @@ TEST(Resume, CausticsSolverResumesExactlyWithItsLearntState) {
         "render",       box,        "-o",         out,        "--seed", "11", "--threads", threads,
         "--iterations", iterations, "--elements", "caustics", "-q"};
     args.insert(args.end(), extra.begin(), extra.end());
+    args.insert(args.end(), options.begin(), options.end());
     return run_nimbus(args, dir);
   };
   ProcessResult r = render(full, "24", "2", {});
@@ -146,6 +147,16 @@ TEST(Resume, CausticsSolverResumesExactlyWithItsLearntState) {
   EXPECT_EQ(meta_number(*b, "nimbus:stat:caustics_photon_passes"), passes);
   EXPECT_EQ(meta_number(*b, "nimbus:stat:caustics_photon_paths"),
             meta_number(*a, "nimbus:stat:caustics_photon_paths"));
+  const auto slots = meta_number(*a, "nimbus:stat:caustics_emission_map_slots");
+  ASSERT_TRUE(slots);
+  EXPECT_EQ(meta_number(*b, "nimbus:stat:caustics_emission_map_slots"), slots);
+  if (options.size() > 1 && options[1] == "adaptive-map") EXPECT_GE(*slots, 1.0) << "the map learnt";
+}
+
+TEST(Resume, CausticsSolverResumesExactlyWithItsLearntState) { expect_caustics_solver_resumes_exactly({}); }
+
+TEST(Resume, CausticsSolverResumesExactlyWithItsEmissionMap) {
+  expect_caustics_solver_resumes_exactly({"--photon_emission", "adaptive-map"});
 }
 
 // Starts a render that would take minutes; returns once it has reported an iteration (and, if `file` is

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/distribution.hpp"
+#include <nimbus/cpp/distribution.hpp>
 
 namespace nimbus {
 namespace {

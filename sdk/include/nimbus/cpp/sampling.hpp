@@ -1,6 +1,9 @@
 // Warps from the unit square to common domains, with their densities (pbrt-v4, ch. A.5).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
@@ -16,6 +19,26 @@ inline Vec2f sample_uniform_disk_concentric(float u0, float u1) {
     r = oy, theta = kPi / 2 - (kPi / 4) * (ox / oy);
   }
   return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+// The (u0, u1) that sample_uniform_disk_concentric maps to the point p of the unit disk (pbrt-v4's
+// InvertUniformDiskConcentricSample): how a density over (u0, u1) is evaluated at a point.
+inline Vec2f invert_uniform_disk_concentric(const Vec2f &p) {
+  const float r = std::sqrt(p.x * p.x + p.y * p.y);
+  if (!(r > 0)) return {0.5f, 0.5f};
+  const float theta = std::atan2(p.y, p.x), k = 4 / kPi;  // theta in [-pi, pi]
+  float ox, oy;
+  if (std::abs(theta) <= kPi / 4) {
+    ox = r, oy = r * theta * k;
+  } else if (std::abs(theta) >= 3 * kPi / 4) {
+    ox = -r, oy = ox * (theta > 0 ? theta - kPi : theta + kPi) * k;
+  } else if (theta > 0) {
+    oy = r, ox = oy * (kPi / 2 - theta) * k;
+  } else {
+    oy = -r, ox = oy * (kPi / 2 - (theta + kPi)) * k;
+  }
+  return {std::clamp(0.5f * (ox + 1), 0.0f, 0x1.fffffep-1f),
+          std::clamp(0.5f * (oy + 1), 0.0f, 0x1.fffffep-1f)};
 }
 
 inline Vec3f sample_cosine_hemisphere(float u0, float u1) {

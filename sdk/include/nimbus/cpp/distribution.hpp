@@ -1,8 +1,8 @@
 // Piecewise-constant distributions for continuous sampling (pbrt-v4 ch. A.1 and A.5): 1-D over [0,1)
-// and 2-D over [0,1)^2 (marginal over rows, conditional within a row). Used to importance-sample
-// environment maps and pixel filters. Tables are flat float arrays: an environment sample binary-searches
-// one contiguous row instead of chasing a per-row allocation of doubles, because on large maps that
-// search is bound by cache misses, not arithmetic.
+// and 2-D over [0,1)^2 (marginal over rows, conditional within a row). The host samples environment
+// maps and pixel filters with them, the caustics solver its emission maps. Tables are flat float
+// arrays: an environment sample binary-searches one contiguous row instead of chasing a per-row
+// allocation of doubles, because on large maps that search is bound by cache misses, not arithmetic.
 #pragma once
 
 #include <algorithm>
