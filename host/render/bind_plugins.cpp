@@ -17,7 +17,9 @@ Status bind_guide(PluginRegistry &registry, const RenderJob &job, const nimbus_h
   if (id.empty()) return Ok{};
   auto guide = registry.instantiate(id, NIMBUS_KIND_GUIDING, host);
   if (!guide) {
-    if (job.guide_named()) return Error{job.scene->path + ": guide: " + guide.error().message};
+    if (job.guide_named())
+      return Error{(job.guide_where.empty() ? job.scene->path + ": guide" : job.guide_where) + ": " +
+                   guide.error().message};
     p.notice =
         "integrator '" + p.integrator.id() + "' renders without its default guide: " + guide.error().message;
     return Ok{};

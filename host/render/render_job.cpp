@@ -87,6 +87,7 @@ Expected<RenderJob> resolve_job(const SceneDesc &scene, const RenderOptions &opt
   job.integrator_options = r.options;
   job.light_sampler = !options.light_sampler.empty() ? options.light_sampler : r.light_sampler;
   job.guide = !options.guide.empty() ? options.guide : r.guide;
+  job.guide_where = !options.guide.empty() ? "--guide" : r.guide_where;
   for (const auto *list : {&r.elements, &options.elements})
     for (const std::string &e : *list) {
       if (e == "lightmix")

@@ -70,6 +70,7 @@ struct RenderJob {
   std::vector<RenderDesc::OptionSetting> integrator_options;
   std::string light_sampler;  // a plugin id; empty: chosen by light count (light_sampler_for)
   std::string guide;          // a plugin id, "none", or empty: the integrator's default (guide_for)
+  std::string guide_where;  // where the job names it, for errors ("scene.yaml:12:3: render.guide", "--guide")
   // Film elements besides beauty, in the order requested (scene first), without "lightmix", which asks
   // for one layer per light group instead.
   std::vector<std::string> elements;

@@ -80,7 +80,12 @@ RenderDesc read_render(const YamlValue &section) {
   if (auto v = m.get("region")) read_region(*v, r);
   // A plugin id; whether such a plugin exists is only known once plugins are loaded.
   if (auto v = m.get("light_sampler")) r.light_sampler = v->nonempty_string();
-  if (auto v = m.get("guide")) r.guide = v->nonempty_string();
+  if (auto v = m.get("guide")) {
+    r.guide = v->nonempty_string();
+    const SourceLocation at = v->location();
+    r.guide_where =
+        at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": " + v->path();
+  }
   return r;
 }
 

@@ -45,6 +45,7 @@ struct RenderDesc {
   uint32_t region[4] = {0, 0, 0, 0};
   std::string light_sampler;  // empty: the host's choice
   std::string guide;          // a guiding plugin id, "none", or empty: the integrator's default guide
+  std::string guide_where;    // for errors: "scene.yaml:12:3: render.guide"
 };
 
 struct CameraDesc {

@@ -68,6 +68,23 @@ TEST(IntegratorOptions, UnknownRenderKeyListsTheIntegratorsOptionsAndTheHostKeys
       << r.err;
 }
 
+// A guide the scene or the command line names must be installed: the error names where it was named.
+TEST(IntegratorOptions, MissingNamedGuideNamesFileLineColumn) {
+  TestDir dir;
+  const std::string path = box_with(dir, "  integrator: caustics\n  guide: org.example.missing\n");
+  ProcessResult r = run_nimbus({"render", path, "-q", "-o", dir.file("x.exr")}, dir);
+  EXPECT_TRUE(exited_with(r, 1)) << r.describe();
+  const std::string where =
+      path + ":" + std::to_string(line_of(path, "guide: org.example.missing")) + ":10: render.guide: ";
+  EXPECT_TRUE(contains(r.err, where)) << r.err;
+  EXPECT_TRUE(contains(r.err, "org.example.missing")) << r.err;
+  r = run_nimbus({"render", path, "--guide", "org.example.other", "-q", "-o", dir.file("x.exr")}, dir);
+  EXPECT_TRUE(exited_with(r, 1)) << r.describe();
+  EXPECT_TRUE(contains(r.err, "--guide: ")) << r.err;
+  EXPECT_TRUE(contains(r.err, "org.example.other")) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.exr")));
+}
+
 TEST(IntegratorOptions, CommandLineOverridesTheSceneAndIsRecorded) {
   TestDir dir;
   const std::string path = box_with(dir, "  integrator: caustics\n  caustics: on\n");
