@@ -33,8 +33,8 @@ const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix",
 // The switch, and two choices kept for measurement (docs/performance.md compares against them).
 const char *const kEmissionChoices[] = {"uniform", "adaptive-map", "guided", nullptr};
 const char *const kSelectionChoices[] = {"adaptive", "power", nullptr};
-// Uniform emission is the default: guided passes have not yet rendered lower error at equal iterations on
-// any caustic scene (docs/performance.md §5).
+// Uniform emission is the default: neither the emission map nor guided passes rendered lower error at
+// equal time across the caustic scenes (docs/performance.md §8).
 const nimbus_option_decl_t kOptions[] = {
     {"caustics", NIMBUS_OPTION_SWITCH, 0, "on", nullptr,
      "caustics by photon merging; off renders exactly what nimbus.pt renders"},

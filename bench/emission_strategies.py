@@ -1,0 +1,61 @@
+#!/usr/bin/python3
+"""Photon emission strategies of the caustics solver at equal time, without a reference: every strategy is
+unbiased, so the relMSE between two independent renders is twice a render's variance. For each scene,
+renders seeds 1..S of every strategy (alternating their order from seed to seed), and prints per strategy
+the median over the S seed pairs (s, s + 1 mod S) of that relMSE, for the beauty and for the `caustics`
+element (both scaled by the pair's mean beauty), the iterations each render reached, and the share of
+traced photon paths a lookup used.
+
+    bench/emission_strategies.py scenes/caustics/stadium.yaml scenes/caustics/envmap.yaml \
+        --strategies uniform,adaptive-map,guided --time 8 [--seeds 3]
+
+Not part of CI (renders for minutes)."""
+import argparse
+import os
+import statistics
+import tempfile
+
+from error_vs_time import relmse
+from nimbus_tools import exr_metadata, read_rgb, run
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("scenes", nargs="+")
+    ap.add_argument("--strategies", default="uniform,adaptive-map,guided",
+                    help="values of the solver's photon_emission option")
+    ap.add_argument("--time", type=float, default=8)
+    ap.add_argument("--seeds", type=int, default=3)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--nimbus", default="build/bin/nimbus")
+    a = ap.parse_args()
+    strategies = a.strategies.split(",")
+    with tempfile.TemporaryDirectory() as tmp:
+        for scene in a.scenes:
+            name = os.path.splitext(os.path.basename(scene))[0]
+            outs = {m: [] for m in strategies}
+            for seed in range(1, a.seeds + 1):
+                for m in strategies if seed % 2 else strategies[::-1]:
+                    out = os.path.join(tmp, f"{name}-{m}-{seed}.exr")
+                    run([a.nimbus, "render", scene, "-o", out, "--time", str(a.time), "--seed", str(seed),
+                         "--threads", str(a.threads), "--photon_emission", m, "--elements", "caustics", "-q"])
+                    outs[m].append(out)
+            for m in strategies:
+                beauty = [read_rgb(o) for o in outs[m]]
+                caustics = [read_rgb(o, "caustics") for o in outs[m]]
+                everything = beauty[0][..., 0] == beauty[0][..., 0]
+                b, c = [], []
+                for i in range(a.seeds):
+                    j = (i + 1) % a.seeds
+                    scale = (beauty[i] + beauty[j]) / 2
+                    b.append(relmse(beauty[i], beauty[j], everything, scale))
+                    c.append(relmse(caustics[i], caustics[j], everything, scale))
+                meta = [exr_metadata(o) for o in outs[m]]
+                iterations = [int(md.get("nimbus:iterations", 0)) for md in meta]
+                used = statistics.median(float(md.get("nimbus:stat:caustics_used_path_fraction", 0)) for md in meta)
+                print(f"{name:14s} {m:13s} beauty {statistics.median(b):.4g} caustics {statistics.median(c):.4g} "
+                      f"iterations {iterations} used {used:.3f}", flush=True)
+
+
+if __name__ == "__main__":
+    main()
