@@ -272,9 +272,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     importance_.save(w), pass_importance_.save(w);
     emission_selection_.save(w);
     emitters_.emission_map().save(w);
-    const std::vector<uint64_t> used = pass_.path_use().used_bits();
-    w.put(uint64_t(used.size()));
-    for (uint64_t b : used) w.put(b);
+    pass_.path_use().save_used(w);
     w.put(stats_);
     return NIMBUS_OK;
   }
@@ -295,18 +293,13 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     ImportanceMap importance = importance_, pass_importance = pass_importance_;
     EmissionSelection selection = emission_selection_;
     EmissionMap emission_map = emitters_.emission_map();
-    uint64_t used_words = 0;
     std::vector<uint64_t> used;
     SolverStats stats;
     if (!(schedule.restore(r) && r.get(work) && r.get(request) && r.get(reach) &&
           r.get_array(radii.counts()) && useful.restore(r) && roulette.restore(r) && importance.restore(r) &&
           pass_importance.restore(r) && selection.restore(r) && emission_map.restore(r) &&
-          r.get(used_words) && used_words <= (1u << 26)))
+          PathUse::read_used(r, used) && r.get(stats) && r.done()))
       return NIMBUS_E_INVALID_ARG;
-    used.resize(used_words);
-    for (uint64_t &b : used)
-      if (!r.get(b)) return NIMBUS_E_INVALID_ARG;
-    if (!(r.get(stats) && r.done())) return NIMBUS_E_INVALID_ARG;
     emission_selection_ = std::move(selection), pending_used_ = std::move(used);
     emitters_.emission_map() = std::move(emission_map);
     emitters_.emission_map().update();  // the densities the current map was traced with

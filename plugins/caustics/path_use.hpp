@@ -51,6 +51,22 @@ class PathUse {
       if (used_[i].load(std::memory_order_relaxed)) bits[i / 64] |= uint64_t(1) << (i % 64);
     return bits;
   }
+  // The flags in a render state, and read back (at most 2^26 words) for set_used_bits.
+  template <class Writer>
+  void save_used(Writer &w) const {
+    const std::vector<uint64_t> bits = used_bits();
+    w.put(uint64_t(bits.size()));
+    for (uint64_t b : bits) w.put(b);
+  }
+  template <class Reader>
+  static bool read_used(Reader &r, std::vector<uint64_t> &bits) {
+    uint64_t words = 0;
+    if (!r.get(words) || words > (uint64_t(1) << 26)) return false;
+    bits.resize(words);
+    for (uint64_t &b : bits)
+      if (!r.get(b)) return false;
+    return true;
+  }
   bool set_used_bits(const std::vector<uint64_t> &bits) {
     if (bits.size() != (lights_.size() + 63) / 64) return false;
     for (size_t i = 0; i < lights_.size(); ++i)
