@@ -1,19 +1,20 @@
 #!/bin/bash
 # The figures docs/performance.md takes from one serial run (a quiet machine: nothing else running):
-# §1 throughput, §2 many lights, §4 overhead table, §5 error table. Long: about two and a half hours on
-# 2 cores (the error stage alone about 100 minutes with its references).
+# §1 throughput, §2 many lights, §4 overhead table, §5 error table, §8 emission strategies. Long: about
+# three and a quarter hours on 2 cores (the error stage alone about 100 minutes with its references, the
+# guiding stage about 40).
 # Writes the files the document cites:
 #   docs/bench-pt.txt
 #   docs/overhead-64.csv
 #   docs/error-vs-time/<scene>/error-vs-time.csv, <scene>-error-vs-time.png, <scene>-reference.exr.txt
 # and, not committed, the images in docs/many-lights/ and the references docs/error-vs-time/<scene>/*.exr
 # (delete a reference to have it rendered again, e.g. after changing its scene).
-#   [STAGES="bench overhead lights error"] bash bench/run_figures.sh [REFERENCE_SECONDS=200] [TIMES=5,20]
+#   [STAGES="bench overhead lights error guiding"] bash bench/run_figures.sh [REFERENCE_SECONDS=200] [TIMES=5,20]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 REF_SECONDS=${1:-200}
 TIMES=${2:-5,20}
-STAGES=${STAGES:-bench overhead lights error}
+STAGES=${STAGES:-bench overhead lights error guiding}
 stage() { [[ " $STAGES " == *" $1 "* ]]; }
 PY=/usr/bin/python3
 NIMBUS=build/bin/nimbus
@@ -53,6 +54,22 @@ for spec in default:pt:all one-light:pt:all many-lights:pt:all caustics/diffuse-
   [[ $scene == cornell-point ]] && times=$TIMES,60
   $PY bench/error_vs_time.py scenes/$path.yaml --integrators pt,caustics --times "$times" --seeds 3 \
     --reference-integrator "$ref" --reference-time "$REF_SECONDS" "${extra[@]}" --out docs/error-vs-time/$scene
+done
+fi
+if stage guiding; then
+# §8: the photon emission strategies at equal time (relMSE between independent renders: all are
+# unbiased), every LightMix group's caustic on many-lights against light-traced references of its
+# lamps, and the render region against the error stage's pool reference.
+echo "== photon emission strategies"
+$PY bench/emission_strategies.py scenes/caustics/{stadium,apartment,envmap}.yaml \
+  --strategies uniform,adaptive-map,guided --time 8
+$PY bench/emission_strategies.py scenes/caustics/{pool,sphere-point,sphere-area,ring,glasses,interior}.yaml \
+  scenes/caustics/{cornell-point,many-lights,diffuse-room}.yaml scenes/default.yaml \
+  --strategies uniform,adaptive-map --time 8
+$PY bench/lightmix_caustics.py --time 30 --reference-time 60 --seeds 3
+for emission in uniform adaptive-map; do
+  $PY bench/render_region.py scenes/caustics/pool.yaml --region 224,80,416,208 --iterations 32 \
+    --reference docs/error-vs-time/pool/pool-reference.exr --flags "--photon_emission $emission"
 done
 fi
 echo "== done"
