@@ -2,7 +2,12 @@
 // frequencies follow pmf() (chi-square), and the tree and power samplers render the same image.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
 
@@ -193,6 +198,48 @@ TEST(LightSamplers, TreeAndPowerRenderTheSameImage) {
   req.seed = 22;
   const Rgb tree = mean_rgb(r.render(scene, req).layers.at("beauty").data);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(tree[c] / power[c], 1.0, 0.03) << "channel " << c;
+}
+
+// A sampler that adapts gets every NEE outcome from the camera-path layer (light_sampler.h, record) and
+// its end_iteration from the host: a lamp over the floor lights many samples, a lamp shut in a box none,
+// and each is picked about half the time (uniform choice).
+TEST(LightSamplers, AdaptingSamplerIsToldEveryNeeOutcome) {
+  SceneRenderer r({NIMBUS_LIGHT_FIXTURE_DIR});
+  const std::string scene = R"(
+render: { resolution: [32, 24], max_depth: 3 }
+camera: { position: [0, -9, 3], look_at: [0, 0, 1], up: [0, 0, 1], fov: 60 }
+materials:
+  white: { type: diffuse, albedo: [0.7, 0.7, 0.7] }
+objects:
+  - { shape: rectangle, size: [20, 20], material: white }
+  - { shape: box, size: [1, 1, 1], material: white, transform: { translate: [3, 0, 0.5] } }
+lights:
+  - { type: point, position: [-2, 0, 2], power: 50 }
+  - { type: point, position: [3, 0, 0.5], power: 50 }
+)";
+  const std::string counts =
+      (std::filesystem::temp_directory_path() / ("nimbus-recording-" + std::to_string(::getpid()) + ".txt"))
+          .string();
+  ::setenv("NIMBUS_RECORDING_SAMPLER_OUT", counts.c_str(), 1);
+  RenderRequest req;
+  req.integrator = "nimbus.pt", req.iterations = 4, req.seed = 3;
+  req.light_sampler = "org.nimbus.test.recording";
+  r.render(scene, req);
+  ::unsetenv("NIMBUS_RECORDING_SAMPLER_OUT");
+  std::ifstream in(counts);
+  uint64_t open[4] = {}, boxed[4] = {};
+  ASSERT_TRUE(in >> open[0] >> open[1] >> boxed[0] >> boxed[1] >> open[2] >> open[3]) << counts;
+  in.close();
+  std::filesystem::remove(counts);
+  EXPECT_EQ(open[2], 0u) << "records with a bad worker or value";
+  EXPECT_EQ(open[3], 4u) << "iterations ended";
+  // 32 x 24 pixels x 4 iterations: 3,072 camera paths, most of them reaching the floor (~1,800 NEE
+  // samples). Half per lamp: a binomial's sigma at 1,000 samples is 0.016, so 0.05 is over 3 sigma.
+  const double n = double(open[0] + boxed[0]);
+  EXPECT_GT(n, 1000.0);
+  EXPECT_NEAR(double(open[0]) / n, 0.5, 0.05);
+  EXPECT_GT(open[1], open[0] / 4) << "the open lamp lights the floor";
+  EXPECT_EQ(boxed[1], 0u) << "the boxed lamp lights nothing";
 }
 
 }  // namespace

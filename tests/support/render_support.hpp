@@ -35,8 +35,12 @@ struct RenderRequest {
 
 class SceneRenderer {
  public:
-  SceneRenderer() : registry_([](int, const std::string &) {}) {
-    registry_.discover({std::string(NIMBUS_BINARY_DIR) + "/lib/nimbus/plugins"}, discovery_.host());
+  // extra_plugin_dirs: test fixtures' directories, searched after the build's plugins.
+  explicit SceneRenderer(const std::vector<std::string> &extra_plugin_dirs = {})
+      : registry_([](int, const std::string &) {}) {
+    std::vector<std::string> dirs = {std::string(NIMBUS_BINARY_DIR) + "/lib/nimbus/plugins"};
+    dirs.insert(dirs.end(), extra_plugin_dirs.begin(), extra_plugin_dirs.end());
+    registry_.discover(dirs, discovery_.host());
     dir_ = std::filesystem::temp_directory_path() /
            ("nimbus-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter_++));
     std::filesystem::create_directories(dir_);

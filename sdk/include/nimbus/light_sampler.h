@@ -32,9 +32,15 @@ typedef struct nimbus_light_sampler_v1 {
   /* [render-thread] Picks a light to emit a photon from with u in [0,1), independent of any receiver;
    * *pmf (out) its probability. */
   uint32_t (*pick_emitter)(const nimbus_plugin_t *plugin, float u, float *pmf);
-  /* [render-thread] Optional (may be NULL): reports the contribution v of a sample of `light`. */
+  /* [render-thread] Optional (may be NULL): reports the contribution v of a sample of `light`. The SDK
+   * kit's camera-path layer (nimbus/cpp/camera_path.hpp) reports every next-event sample it picked: v
+   * is the luminance of path throughput x BSDF x cos x L / (the light's own pdf), before the selection
+   * probability and MIS; 0 when the sample is occluded or carries no light. Called concurrently from
+   * every render thread (ctx->worker tells them apart, ctx borrowed); a sampler that adapts keeps
+   * per-worker data and merges it in end_iteration in an order that does not depend on the threads. */
   void (*record)(const nimbus_plugin_t *plugin, const nimbus_thread_ctx_t *ctx, uint32_t light, float v);
-  /* [main-thread] Optional (may be NULL): adapt tables between iterations. */
+  /* [main-thread] Optional (may be NULL): adapt tables between iterations; the host calls it after
+   * every iteration's camera pass, before the integrator's end_iteration. */
   void (*end_iteration)(const nimbus_plugin_t *plugin, uint64_t iteration);
 } nimbus_light_sampler_v1_t;
 

@@ -189,9 +189,16 @@ class LightSampler : public Plugin {
   virtual uint32_t pick(const nimbus_interaction_t &ix, float u, float *pmf) = 0;
   virtual float pmf(const nimbus_interaction_t &ix, uint32_t light) = 0;
   virtual uint32_t pick_emitter(float u, float *pmf) = 0;
+  // A sampler that learns from its samples returns true from adapts(): its table then carries record
+  // (every NEE outcome, light_sampler.h) and end_iteration; the others leave them NULL, so that the
+  // camera-path layer makes no call per sample.
+  virtual bool adapts() const { return false; }
+  virtual void record(const nimbus_thread_ctx_t &, uint32_t, float) {}
+  virtual void end_iteration(uint64_t) {}
 
   const void *interface(const char *id, uint32_t rev) override {
-    return (rev == 1 && std::strcmp(id, NIMBUS_IFACE_LIGHT_SAMPLER) == 0) ? &table() : nullptr;
+    if (rev != 1 || std::strcmp(id, NIMBUS_IFACE_LIGHT_SAMPLER) != 0) return nullptr;
+    return adapts() ? &table<true>() : &table<false>();
   }
 
  private:
@@ -206,6 +213,7 @@ class LightSampler : public Plugin {
     });
     return r;
   }
+  template <bool kAdapts>
   static const nimbus_light_sampler_v1_t &table() {
     static const nimbus_light_sampler_v1_t t = {
         sizeof(nimbus_light_sampler_v1_t),
@@ -223,8 +231,12 @@ class LightSampler : public Plugin {
           *pmf = 0;
           return hot<uint32_t>(p, NIMBUS_NONE, [&] { return self(p)->pick_emitter(u, pmf); });
         },
-        nullptr,
-        nullptr};
+        kAdapts ? +[](const nimbus_plugin_t *p, const nimbus_thread_ctx_t *ctx, uint32_t light,
+                      float v) { hot<int>(p, 0, [&] { return self(p)->record(*ctx, light, v), 0; }); }
+                : nullptr,
+        kAdapts ? +[](const nimbus_plugin_t *p,
+                      uint64_t it) { hot<int>(p, 0, [&] { return self(p)->end_iteration(it), 0; }); }
+                : nullptr};
     return t;
   }
 };

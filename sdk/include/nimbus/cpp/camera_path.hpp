@@ -101,6 +101,9 @@ class CameraPathIntegrator : public Integrator {
     sampler_ = setup.light_sampler;
     sampler_iface_ = setup.light_sampler_iface;
     if (!sampler_ || !sampler_iface_) return NIMBUS_E_INVALID_ARG;
+    // A sampler that learns from its samples gets every NEE outcome (light_sampler.h, record).
+    record_ = NIMBUS_HAS_MEMBER(sampler_iface_, nimbus_light_sampler_v1_t, record) ? sampler_iface_->record
+                                                                                   : nullptr;
     infinite_.clear();
     light_group_.clear();
     light_info_.clear();
@@ -281,6 +284,18 @@ class CameraPathIntegrator : public Integrator {
     float pmf = 0;
     const uint32_t light = selection_.pick(&ix, u_pick, u_mix, &pmf);
     if (light == NIMBUS_NONE || !(pmf > 0)) return;
+    // The sample's outcome for the sampler: its contribution before selection and MIS, 0 unless it
+    // reaches the vertex unoccluded.
+    float outcome = 0;
+    struct Report {
+      const CameraPathIntegrator &self;
+      const nimbus_thread_ctx_t &ctx;
+      uint32_t light;
+      const float &v;
+      ~Report() {
+        if (self.record_) self.record_(self.sampler_, &ctx, light, v);
+      }
+    } report{*this, ctx, light, outcome};
     nimbus_light_incident_t ls;
     svc_.lights->sample_incident(h, light, &ix, u_light, &ls);
     if (!(ls.pdf > 0)) return;
@@ -299,6 +314,7 @@ class CameraPathIntegrator : public Integrator {
     uint8_t blocked = 0;
     svc_.scene->occluded(h, &ctx, &shadow, &blocked, 1);
     if (blocked) return;
+    outcome = luminance(beta * contrib * Li) / ls.pdf;
     const bool delta = (ls.flags & (NIMBUS_LIGHT_DELTA_POSITION | NIMBUS_LIGHT_DELTA_DIRECTION)) != 0;
     const float light_pdf = pmf * ls.pdf;
     const PathWeight w =
@@ -323,6 +339,7 @@ class CameraPathIntegrator : public Integrator {
   PathServices svc_;
   const nimbus_plugin_t *sampler_ = nullptr;
   const nimbus_light_sampler_v1_t *sampler_iface_ = nullptr;
+  void (*record_)(const nimbus_plugin_t *, const nimbus_thread_ctx_t *, uint32_t, float) = nullptr;
   LightSelection selection_;
   uint32_t max_depth_ = 16;
   std::vector<uint32_t> infinite_;
