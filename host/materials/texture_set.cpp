@@ -65,8 +65,7 @@ std::string first_line(const std::string &text) {
 Error texture_error(const TextureDesc &t, const std::string &reason) {
   std::string message = t.path + ": cannot read texture: " + reason;
   if (t.where.line > 0)
-    message = t.where.file + ":" + std::to_string(t.where.line) + ":" + std::to_string(t.where.column) +
-              ": error: " + (t.key.empty() ? "" : t.key + ": ") + message;
+    message = t.where.text() + ": error: " + (t.key.empty() ? "" : t.key + ": ") + message;
   return Error{std::move(message)};
 }
 

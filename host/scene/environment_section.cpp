@@ -14,10 +14,6 @@ namespace nimbus::scene_yaml {
 
 namespace {
 
-std::string where_text(const SourceLocation &w) {
-  return w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column);
-}
-
 // The form named by `type:` (color | map | sky) or, without it, by the one of `color:`/`map:` present.
 EnvironmentType read_form(const YamlMap &m) {
   if (m.has("color") && m.has("map")) m.key("map").fail("cannot be combined with 'color'");
@@ -62,12 +58,12 @@ void read_sky_sun(const YamlMap &m, const std::vector<LightDesc> &lights, Enviro
     if (l.type == LightType::Sun) suns.push_back(&l);
   if (suns.size() > 1)
     m.self().fail("a sky takes its sun from the scene's sun light, but there are " +
-                  std::to_string(suns.size()) + " (at " + where_text(suns[0]->where) + " and " +
-                  where_text(suns[1]->where) + ")");
+                  std::to_string(suns.size()) + " (at " + suns[0]->where.text() + " and " +
+                  suns[1]->where.text() + ")");
   if (suns.size() == 1) {
     if (m.has("sun_direction"))
       m.key("sun_direction")
-          .fail("cannot be combined with the sun light at " + where_text(suns[0]->where) +
+          .fail("cannot be combined with the sun light at " + suns[0]->where.text() +
                 ", which sets the sky's sun");
     env.sun_direction = -suns[0]->direction;
     return;

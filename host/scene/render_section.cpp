@@ -45,9 +45,7 @@ RenderDesc read_render(const YamlValue &section) {
     if (!e.value.is_scalar())
       e.value.fail("expected a value for the integrator's option, got " + e.value.describe());
     const SourceLocation at = e.key_value.location();
-    r.options.push_back({e.key, e.value.text(),
-                         at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": " +
-                             e.key_value.path(),
+    r.options.push_back({e.key, e.value.text(), at.text() + ": " + e.key_value.path(),
                          "the render section's own keys: " + join_names(kRenderKeys)});
   }
 
@@ -82,9 +80,7 @@ RenderDesc read_render(const YamlValue &section) {
   if (auto v = m.get("light_sampler")) r.light_sampler = v->nonempty_string();
   if (auto v = m.get("guide")) {
     r.guide = v->nonempty_string();
-    const SourceLocation at = v->location();
-    r.guide_where =
-        at.file + ":" + std::to_string(at.line) + ":" + std::to_string(at.column) + ": " + v->path();
+    r.guide_where = v->location().text() + ": " + v->path();
   }
   return r;
 }

@@ -20,6 +20,8 @@ struct SourceLocation {
   std::string file;
   int line = 0;    // 1-based; 0 = unknown
   int column = 0;  // 1-based
+  // "file:line:column", as errors name a place.
+  std::string text() const { return file + ":" + std::to_string(line) + ":" + std::to_string(column); }
 };
 
 struct RenderDesc {

@@ -12,10 +12,6 @@ const std::vector<std::string_view> kMainSections{"render",  "camera", "material
                                                   "objects", "lights", "environment", "include"};
 const std::vector<std::string_view> kIncludedSections{"materials", "meshes", "objects", "lights", "include"};
 
-std::string where_text(const SourceLocation &w) {
-  return w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column);
-}
-
 // The top-level map of a file; yaml-cpp's syntax errors are reported in the file they occur in.
 YAML::Node load_document(const std::string &text, const std::string &display_name) {
   try {
@@ -87,7 +83,7 @@ void SceneFiles::include(const YamlValue &entry) {
   if (!root.is_map())
     throw ParseFailure{format_error(source.display_name, root.line(), root.column(), "scene",
                                     "expected a map of sections, got " + root.describe() +
-                                        " (included from " + where_text(entry.location()) + ")")};
+                                        " (included from " + entry.location().text() + ")")};
   stack_.emplace_back(canonical, shown);
   add(root, false);
   stack_.pop_back();

@@ -18,10 +18,6 @@ using scene_yaml::SceneSource;
 using scene_yaml::YamlMap;
 using scene_yaml::YamlValue;
 
-std::string where_text(const SourceLocation &w) {
-  return w.file + ":" + std::to_string(w.line) + ":" + std::to_string(w.column);
-}
-
 // Materials of every file share one namespace, so that objects anywhere can name them.
 void append_materials(const YamlValue &section, std::vector<MaterialDesc> &materials) {
   for (MaterialDesc &m : scene_yaml::read_materials(section)) {
@@ -29,8 +25,7 @@ void append_materials(const YamlValue &section, std::vector<MaterialDesc> &mater
       if (other.name == m.name)
         throw ParseFailure{scene_yaml::format_error(
             m.where.file, m.where.line, m.where.column, "materials." + scene_yaml::abbreviate(m.name),
-            "material '" + scene_yaml::abbreviate(m.name) + "' is already defined at " +
-                where_text(other.where))};
+            "material '" + scene_yaml::abbreviate(m.name) + "' is already defined at " + other.where.text())};
     materials.push_back(std::move(m));
   }
 }

@@ -1,4 +1,4 @@
-// The adaptive emission map (photon_emission: adaptive), in the style of lightweight photon mapping's
+// The adaptive emission map (photon_emission: adaptive-map), in the style of lightweight photon mapping's
 // emission guiding: every projection-map component whose two emission numbers the solver maps itself
 // (a finite light's cone towards one target; the targets' rectangle or disk of the sun or an
 // environment) has a slot, and a slot whose uniform photon paths camera lookups used gets a histogram of
@@ -17,10 +17,9 @@
 #include <nimbus/cpp/distribution.hpp>
 #include <nimbus/cpp/math.hpp>
 
-namespace nimbus::caustics {
+#include "path_use.hpp"
 
-// A path's emission cell: slot * kCells + cell, or kNoEmissionCell when its numbers were not mapped.
-inline constexpr uint32_t kNoEmissionCell = 0xffffffffu;
+namespace nimbus::caustics {
 
 class EmissionMap {
  public:
@@ -35,7 +34,6 @@ class EmissionMap {
     index_.assign(adaptive_ ? slots : 0, kNone);
     learnt_.clear(), dists_.clear();
   }
-  bool adaptive() const { return adaptive_; }
   // Whether slot has a learnt density (else it is 1 everywhere and needs no inversion).
   bool learnt(uint32_t slot) const { return slot < index_.size() && index_[slot] < dists_.size(); }
   size_t slots_learnt() const { return dists_.size(); }

@@ -17,7 +17,7 @@
 //   environment: directions from environment_emission.hpp (the bright parts of the map only; a uniform
 //          map emits nothing, so its P_sel is 0 and no merge technique exists for it), origins as the
 //          sun's on the targets' disk.
-// With photon_emission: adaptive, each cone and each targets' disk or rectangle also has a learnt density
+// With photon_emission: adaptive-map, each cone and each targets' disk or rectangle also has a learnt density
 // over its two numbers (emission_map.hpp); both sides read it through the same inversions.
 #pragma once
 

@@ -17,13 +17,16 @@ namespace nimbus::caustics {
 // proposal.
 inline constexpr uint32_t kNoLight = 0x7fffffffu;
 inline constexpr uint32_t kProposalPath = 0x80000000u;
+// A path's emission cell (emission_map.hpp: slot * kCells + cell), or kNoEmissionCell when the
+// emission map did not place its numbers.
+inline constexpr uint32_t kNoEmissionCell = 0xffffffffu;
 
 class PathUse {
  public:
   // [main-thread] The paths of a new map (their lights and emission cells), none used yet.
   void reset(std::vector<uint32_t> lights, std::vector<uint32_t> cells) {
     lights_ = std::move(lights), cells_ = std::move(cells);
-    cells_.resize(lights_.size(), 0xffffffffu);
+    cells_.resize(lights_.size(), kNoEmissionCell);
     used_ = std::make_unique<std::atomic<uint8_t>[]>(lights_.size());
     for (size_t i = 0; i < lights_.size(); ++i) used_[i].store(0, std::memory_order_relaxed);
   }
