@@ -15,6 +15,7 @@
 #include <nimbus/cpp/render_state.hpp>
 
 #include "caustics_record.hpp"
+#include "emission_selection.hpp"
 #include "emitters.hpp"
 #include "lookup_roulette.hpp"
 #include "merging.hpp"
@@ -79,15 +80,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     power_selection_ = selection && std::strcmp(selection, "power") == 0;
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
     seed_ = setup.seed;
-    guide_ = {};
-    if (setup.guide && !uniform_emission_) {
-      const auto *t = static_cast<const nimbus_guiding_v2_t *>(
-          setup.guide->get_interface(setup.guide, NIMBUS_IFACE_GUIDING, 2));
-      if (t && t->struct_size >= sizeof(nimbus_guiding_v2_t))
-        guide_ = {setup.guide, t};
-      else
-        log(NIMBUS_LOG_WARNING, "the bound guide has no nimbus.iface.guiding@2: photons are not guided");
-    }
+    guide_ = uniform_emission_ ? GuideBinding{} : GuideBinding::of(setup.guide);
+    if (setup.guide && !uniform_emission_ && !guide_)
+      log(NIMBUS_LOG_WARNING, "the bound guide has no nimbus.iface.guiding@2: photons are not guided");
     float center[3];
     scene_radius_ = services().scene->bounding_sphere(host().get(), center);
     scene_center_ = Vec3f::load(center);
@@ -119,9 +114,11 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     nimbus_camera_sample_t centre{{0.5f * float(width_), 0.5f * float(height_)}, {0.5f, 0.5f}};
     nimbus_ray_t eye{};
     services().camera->generate_ray(h, &centre, &eye);
-    emission_selection_.configure(emitters_.selection_inputs(Vec3f::load(eye.org)), ids().lightmix,
-                                  !power_selection_);
-    emitters_.set_selection(emission_selection_.probabilities());
+    EmissionSelection::Inputs selection{emitters_.photon_powers(), Vec3f::load(eye.org), scene_radius_,
+                                        ids().lightmix, power_selection_};
+    nimbus_status_t s = emission_selection_.configure(light_sampler(), light_sampler_iface(), h,
+                                                      services().lights, std::move(selection));
+    if (s != NIMBUS_OK || (s = select_lights()) != NIMBUS_OK) return s;
     emitters_.reset_emission_map(adaptive_map_);
     pending_used_.clear();
     armed_ = enabled_ && caustics_can_form;
@@ -147,7 +144,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       // A resumed render: the map of the last pass, from the same arguments (photon_pass is deterministic)
       // and the same light selection, with the lookups' flags on its paths as they were saved. Traced
       // even when a new pass is due now: the new pass's light selection and guiding count its paths.
-      emitters_.set_selection(emission_selection_.probabilities());
+      if (nimbus_status_t s = select_lights(); s != NIMBUS_OK) return s;
       PhotonPass::Result result;
       if (nimbus_status_t s = photon_pass(schedule_.passes(), map_request_, map_reach_, result);
           s != NIMBUS_OK)
@@ -165,20 +162,15 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
         if (uniform) emission_selection_.count(light, used), map.count(cell, used);
         stats_.used_paths += used ? 1 : 0;
       });
-      emitters_.set_selection(emission_selection_.probabilities());
+      if (nimbus_status_t s = select_lights(); s != NIMBUS_OK) return s;
       map.update();
       map_request_ = paths, map_reach_ = PhotonPass::filter_reach(lookup_radii_);
       PhotonPass::Result result;
       if (nimbus_status_t s = photon_pass(schedule_.passes() + 1, paths, map_reach_, result); s != NIMBUS_OK)
         return s;
-      stats_.photon_paths += result.traced;
-      stats_.proposals += result.proposals, stats_.accepted += result.accepted;
-      stats_.guided_passes += result.importance_ratio > 0 ? 1 : 0;
-      stats_.photons += pass_.map().size();
-      stats_.photon_bytes += pass_.map().bytes();
-      ++stats_.passes;
+      stats_.pass_done(result, pass_.map().size(), pass_.map().bytes(),
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       useful_.map_changed();
-      stats_.photon_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       schedule_.pass_done(iteration, result.traced, pass_.map().size());
     }
     map_active_ = schedule_.map_active();
@@ -318,6 +310,17 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
 
  private:
   // Photon pass `pass` of `paths` paths: the map and what camera passes read with it.
+  // The light selection of the next photon map, from the bound sampler (emission_selection.hpp).
+  nimbus_status_t select_lights() {
+    std::vector<double> p;
+    std::string error;
+    const nimbus_status_t s = emission_selection_.probabilities(p, error);
+    if (s == NIMBUS_OK) emitters_.set_selection(p);
+    if (s != NIMBUS_OK)
+      log(NIMBUS_LOG_ERROR, "light sampler " + std::string(light_sampler()->desc->id) + ": " + error);
+    return s;
+  }
+
   nimbus_status_t photon_pass(uint32_t pass, uint64_t paths, float filter_reach, PhotonPass::Result &result) {
     const nimbus_host_t *h = host().get();
     if (progress_) progress_->report(h, 0, paths, "photons");

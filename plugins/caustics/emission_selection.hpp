@@ -1,37 +1,54 @@
-// Light selection for photon emission (solver spec 6.1). Two groups: I (sun and environments) and F (the
-// finite lights), half of the photon paths each when both emit. Within I a light weighs its photon
-// power, within F its photon power over the squared distance from the camera to its bounds (at least
-// eps^2, eps = max(its radius, 1e-3 R_scene)): lights near the camera light what it sees. The prior P0 is
-// then adapted by what the photons did: over all previous maps, n_l uniform paths were emitted from
-// light l and c_l of them had a photon that a lookup used with a non-zero contribution;
-// s_l = (c_l + s) / (n_l + 1) with s = sum c / sum n (a sparsely sampled light shrinks towards the mean),
-// and P_l = 0.8 P0_l s_l / sum_m P0_m s_m + 0.2 P0_l. The 20 % defensive share keeps every light
-// reachable, which the guide's uniform samples and the MIS densities need. Only uniform paths count
-// (chain paths are biased towards contributing ones). With LightMix, half of the paths pick a group
-// uniformly (spec 6.1, "LightMix"), so that every group's layer converges on its own.
-// The probabilities change only at photon passes: a map and the camera passes that read it see one table.
+// Light selection for photon emission (solver spec 6.1) is the bound light sampler's
+// (light_sampler.h update_emission, since 1.6; the SDK kit's emitter_selection.hpp holds the rule).
+// Before every photon pass the solver reports each light's photon power, the camera, and per light the
+// uniform paths emitted and those a lookup used over all earlier passes (chain paths are biased towards
+// contributing ones and are not counted); it then freezes the sampler's pmf_emitter into its own table,
+// which the photons and the camera side read until the next pass. The counts are the solver's, saved with
+// its state, so a resumed render rebuilds the same tables. A sampler without update_emission (built
+// against an older SDK) gets the same rule from the kit inside the solver; `photon_light_selection:
+// power` (kept for measurement) picks by photon power alone.
 #pragma once
 
+#include <nimbus/light_sampler.h>
+
+#include <cmath>
 #include <cstdint>
-#include <map>
+#include <string>
 #include <vector>
+
+#include <nimbus/cpp/emitter_selection.hpp>
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus::caustics {
 
 class EmissionSelection {
  public:
-  struct Light {
-    double weight = 0;      // photon power (0: emits no photons)
-    bool infinite = false;  // group I
-    double distance2 = 1;   // finite: max(squared distance camera-bounds, eps^2)
-    uint32_t group = 0;     // LightMix group
+  struct Inputs {
+    std::vector<double> photon_power;  // per light (emitters.hpp: what its photons carry)
+    Vec3f camera;
+    float scene_radius = 1;
+    bool lightmix = false;
+    bool power_only = false;  // the measurement option
   };
 
-  // adaptive false: photon power alone, never adapted (kept to measure the rule against).
-  void configure(std::vector<Light> lights, bool lightmix, bool adaptive = true) {
-    lights_ = std::move(lights), lightmix_ = lightmix, adaptive_ = adaptive;
-    n_.assign(lights_.size(), 0), c_.assign(lights_.size(), 0);
+  // [main-thread] A new render: the bound sampler (borrowed for the render) and the host's lights.
+  nimbus_status_t configure(const nimbus_plugin_t *sampler, const nimbus_light_sampler_v1_t *iface,
+                            const nimbus_host_t *host, const nimbus_host_lights_v1_t *lights, Inputs in) {
+    in_ = std::move(in);
+    n_.assign(in_.photon_power.size(), 0), c_.assign(in_.photon_power.size(), 0);
+    sampler_ = sampler, iface_ = nullptr;
+    if (NIMBUS_HAS_MEMBER(iface, nimbus_light_sampler_v1_t, pmf_emitter) && iface->update_emission &&
+        iface->pmf_emitter)
+      iface_ = iface;
+    if (iface_ || in_.power_only) return NIMBUS_OK;
+    nimbus_scene_info_t info{};
+    info.header = {sizeof(info), NIMBUS_S_TYPE_SCENE_INFO, nullptr};
+    info.light_count = uint32_t(in_.photon_power.size()), info.scene_radius = in_.scene_radius;
+    return own_.prepare(host, lights, info);
   }
+  // Whether the bound sampler chooses the photons' lights (else the kit's rule inside the solver does).
+  bool by_sampler() const { return iface_ != nullptr && !in_.power_only; }
+
   // [main-thread] A uniform photon path of `light` from a finished map, and whether it contributed.
   void count(uint32_t light, bool contributed) {
     if (light >= n_.size()) return;
@@ -39,22 +56,29 @@ class EmissionSelection {
     if (contributed) ++c_[light];
   }
 
-  // The selection probability of each light (sums to 1 over the emitting lights, or all 0).
-  std::vector<double> probabilities() const {
-    const size_t n = lights_.size();
-    std::vector<double> p0 = prior(), p(n, 0.0);
-    double n_sum = 0, c_sum = 0;
-    for (size_t l = 0; l < n; ++l) n_sum += double(n_[l]), c_sum += double(c_[l]);
-    double adapted = 0;
-    if (c_sum > 0 && adaptive_) {
-      const double mean = c_sum / n_sum;
-      for (size_t l = 0; l < n; ++l) adapted += p0[l] * (double(c_[l]) + mean) / (double(n_[l]) + 1);
+  // [main-thread] The selection probability of each light for the next photon map (out); a sampler's
+  // failure or an invalid probability is an error, `error` (out) says which.
+  nimbus_status_t probabilities(std::vector<double> &p, std::string &error) {
+    if (in_.power_only) return p = in_.photon_power, NIMBUS_OK;
+    nimbus_emission_feedback_t f{};
+    f.header = {sizeof(f), NIMBUS_S_TYPE_EMISSION_FEEDBACK, nullptr};
+    f.light_count = uint32_t(n_.size()), f.flags = in_.lightmix ? NIMBUS_EMISSION_LIGHTMIX : 0u;
+    in_.camera.store(f.camera);
+    f.photon_power = in_.photon_power.data(), f.emitted = n_.data(), f.contributed = c_.data();
+    const nimbus_status_t s = iface_ ? iface_->update_emission(sampler_, &f) : own_.update(f);
+    if (s != NIMBUS_OK) return error = "update_emission failed", s;
+    p.assign(n_.size(), 0.0);
+    for (uint32_t l = 0; l < n_.size(); ++l) {
+      const float q = iface_ ? iface_->pmf_emitter(sampler_, l) : own_.pmf(l);
+      if (!(q >= 0 && q <= 1))
+        return error = "pmf_emitter of light " + std::to_string(l) + " is not in [0, 1]", NIMBUS_E_INTERNAL;
+      if (q == 0 && in_.photon_power[l] > 0)
+        return error =
+                   "pmf_emitter gives light " + std::to_string(l) + ", which emits photons, probability 0",
+               NIMBUS_E_INTERNAL;
+      p[l] = in_.photon_power[l] > 0 ? double(q) : 0.0;
     }
-    for (size_t l = 0; l < n; ++l) {
-      const double s = adapted > 0 ? (double(c_[l]) + c_sum / n_sum) / (double(n_[l]) + 1) : 0.0;
-      p[l] = adapted > 0 ? kAdapted * p0[l] * s / adapted + (1 - kAdapted) * p0[l] : p0[l];
-    }
-    return lightmix_ ? balance_groups(p) : p;
+    return NIMBUS_OK;
   }
 
   template <class Writer>
@@ -74,38 +98,10 @@ class EmissionSelection {
   }
 
  private:
-  static constexpr double kAdapted = 0.8;  // the rest is the defensive share
-
-  std::vector<double> prior() const {
-    double sum[2] = {0, 0};  // F, I
-    std::vector<double> pi(lights_.size(), 0.0);
-    for (size_t l = 0; l < lights_.size(); ++l) {
-      const Light &L = lights_[l];
-      if (!(L.weight > 0)) continue;
-      pi[l] = L.infinite || !adaptive_ ? L.weight : L.weight / L.distance2;
-      sum[L.infinite] += pi[l];
-    }
-    if (!adaptive_) {
-      for (double &w : pi) w /= sum[0] + sum[1];
-      return pi;
-    }
-    const bool both = sum[0] > 0 && sum[1] > 0;
-    for (size_t l = 0; l < lights_.size(); ++l)
-      if (pi[l] > 0) pi[l] = (both ? 0.5 : 1.0) * pi[l] / sum[lights_[l].infinite];
-    return pi;
-  }
-  std::vector<double> balance_groups(const std::vector<double> &p) const {
-    std::map<uint32_t, double> group;
-    for (size_t l = 0; l < p.size(); ++l)
-      if (p[l] > 0) group[lights_[l].group] += p[l];
-    std::vector<double> out(p.size(), 0.0);
-    for (size_t l = 0; l < p.size(); ++l)
-      if (p[l] > 0) out[l] = 0.5 * p[l] + 0.5 * p[l] / (group[lights_[l].group] * double(group.size()));
-    return out;
-  }
-
-  std::vector<Light> lights_;
-  bool lightmix_ = false, adaptive_ = true;
+  Inputs in_;
+  const nimbus_plugin_t *sampler_ = nullptr;
+  const nimbus_light_sampler_v1_t *iface_ = nullptr;  // null: the kit's rule in own_
+  sdk::EmitterSelection own_;
   std::vector<uint64_t> n_, c_;  // uniform paths emitted, and those that contributed, per light
 };
 

@@ -33,7 +33,6 @@
 
 #include "emission_cone.hpp"
 #include "emission_map.hpp"
-#include "emission_selection.hpp"
 #include "environment_emission.hpp"
 #include "sharp_targets.hpp"
 
@@ -135,19 +134,10 @@ class EmitterSet {
     table_ = AliasTable(rule_);
   }
 
-  // What light selection (emission_selection.hpp) weighs each light by, seen from `camera`: its photon
-  // power (the power of what it emits towards targets; a light that cannot aim at any keeps the
-  // defensive share), its group and its squared distance to the camera.
-  std::vector<EmissionSelection::Light> selection_inputs(const Vec3f &camera) const {
-    std::vector<EmissionSelection::Light> out(emitters_.size());
-    for (size_t i = 0; i < emitters_.size(); ++i) {
-      const Emitter &e = emitters_[i];
-      const Vec3f gap = max(max(e.lo - camera, camera - e.hi), Vec3f(0));
-      const float eps = std::max(0.5f * length(e.hi - e.lo), 1e-3f * scene_radius_);
-      out[i] = {rule_[i], e.infinite(), std::max(double(length_squared(gap)), double(eps) * eps), e.group};
-    }
-    return out;
-  }
+  // The flux each light's photons carry (light selection reports it to the sampler,
+  // emission_selection.hpp): the power of what it emits towards targets, or the defensive share of it for
+  // a light that cannot aim at any.
+  const std::vector<double> &photon_powers() const { return rule_; }
   // The selection probabilities of the next photon map (both sides read them until the one after).
   void set_selection(const std::vector<double> &p) { table_ = AliasTable(p); }
   // [main-thread] A new render's emission map, learning (adaptive) or uniform (emission_map.hpp).
@@ -391,7 +381,7 @@ class EmitterSet {
   EmissionMap map_;
   const nimbus_host_t *host_ = nullptr;
   const nimbus_host_lights_v1_t *lights_ = nullptr;
-  std::vector<double> rule_;  // photon power of each light (selection_inputs)
+  std::vector<double> rule_;  // photon power of each light (photon_powers)
   AliasTable table_;
   Vec3f scene_center_;
   float scene_radius_ = 1;

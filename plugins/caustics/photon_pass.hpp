@@ -27,6 +27,13 @@ struct GuideBinding {
   const nimbus_plugin_t *plugin = nullptr;
   const nimbus_guiding_v2_t *iface = nullptr;
   explicit operator bool() const { return plugin && iface; }
+  // The binding of `guide` (borrowed for the render; null: none), or none when it lacks rev 2.
+  static GuideBinding of(const nimbus_plugin_t *guide) {
+    const auto *t =
+        guide ? static_cast<const nimbus_guiding_v2_t *>(guide->get_interface(guide, NIMBUS_IFACE_GUIDING, 2))
+              : nullptr;
+    return t && t->struct_size >= sizeof(nimbus_guiding_v2_t) ? GuideBinding{guide, t} : GuideBinding{};
+  }
 };
 
 // The i-th path a task of pass `pass` traces in its run [b, e): the run rotated by an offset hashed from

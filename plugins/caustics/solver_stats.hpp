@@ -22,6 +22,15 @@ struct SolverStats {
     double emission_slots = 0;  // projection-map components with a learnt emission density
   };
 
+  // [main-thread] A photon pass (photon_pass.hpp's Result), its map's photons and bytes, its seconds.
+  template <class PassResult>
+  void pass_done(const PassResult &r, uint64_t map_photons, uint64_t map_bytes, double seconds) {
+    photon_paths += r.traced, proposals += r.proposals, accepted += r.accepted;
+    guided_passes += r.importance_ratio > 0 ? 1 : 0;
+    photons += map_photons, photon_bytes += map_bytes, photon_seconds += seconds;
+    ++passes;
+  }
+
   // [main-thread]
   void report(const nimbus_host_progress_v1_t *progress, const nimbus_host_t *h, const Final &f) const {
     const auto ratio = [](uint64_t a, uint64_t b) { return b > 0 ? double(a) / double(b) : 0.0; };

@@ -1,11 +1,13 @@
-// nimbus.lights.power: picks lights in proportion to their emitted power (alias table), the same
-// distribution for next-event estimation and photon emission. Lights with zero power are never picked.
+// nimbus.lights.power: picks lights for next-event estimation in proportion to their emitted power (alias
+// table); lights with zero power are never picked. Photon emission picks by power too until an
+// integrator's feedback adapts it by the SDK kit's rule (emitter_selection.hpp).
 #include <nimbus/nimbus.hpp>
 
 #include <cmath>
 #include <vector>
 
 #include <nimbus/cpp/alias_table.hpp>
+#include <nimbus/cpp/emitter_selection.hpp>
 
 namespace nimbus::lights {
 namespace {
@@ -22,7 +24,8 @@ class PowerLightSampler final : public sdk::LightSampler {
     return lights_ ? NIMBUS_OK : NIMBUS_E_UNSUPPORTED;
   }
 
-  nimbus_status_t prepare(const nimbus_scene_info_t &) override {
+  nimbus_status_t prepare(const nimbus_scene_info_t &scene) override {
+    if (nimbus_status_t s = emission_.prepare(host().get(), lights_, scene); s != NIMBUS_OK) return s;
     const uint32_t n = lights_->count(host().get());
     std::vector<double> power(n, 0.0);
     for (uint32_t i = 0; i < n; ++i) {
@@ -35,16 +38,22 @@ class PowerLightSampler final : public sdk::LightSampler {
     return NIMBUS_OK;
   }
 
-  uint32_t pick(const nimbus_interaction_t &, float u, float *pmf) override { return pick_emitter(u, pmf); }
-  float pmf(const nimbus_interaction_t &, uint32_t light) override { return table_.pmf(light); }
-  uint32_t pick_emitter(float u, float *pmf) override {
+  uint32_t pick(const nimbus_interaction_t &, float u, float *pmf) override {
     const int64_t i = table_.sample(u, pmf);
     return i < 0 ? NIMBUS_NONE : uint32_t(i);
   }
+  float pmf(const nimbus_interaction_t &, uint32_t light) override { return table_.pmf(light); }
+  uint32_t pick_emitter(float u, float *pmf) override { return emission_.pick(u, pmf); }
+  bool adapts_emission() const override { return true; }
+  nimbus_status_t update_emission(const nimbus_emission_feedback_t &f) override {
+    return emission_.update(f);
+  }
+  float pmf_emitter(uint32_t light) override { return emission_.pmf(light); }
 
  private:
   const nimbus_host_lights_v1_t *lights_ = nullptr;
   AliasTable table_;
+  sdk::EmitterSelection emission_;  // photon emission
 };
 
 }  // namespace

@@ -4,7 +4,8 @@
 // The BVH is built binary (pbrt-v4's split heuristic) and collapsed into 4-wide nodes whose four
 // importances are one SIMD evaluation.
 // Infinite lights (sun, environment) are chosen with a fixed probability beside the tree. Photon emission
-// (receiver-independent) uses power-proportional selection.
+// (receiver-independent) follows the integrator's feedback by the SDK kit's rule (emitter_selection.hpp),
+// by power before any.
 #include <nimbus/nimbus.hpp>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include <nimbus/cpp/alias_table.hpp>
+#include <nimbus/cpp/emitter_selection.hpp>
 #include "light_bounds.hpp"
 
 namespace nimbus::lights {
@@ -42,7 +44,8 @@ class LightTree final : public sdk::LightSampler {
     return lights_ ? NIMBUS_OK : NIMBUS_E_UNSUPPORTED;
   }
 
-  nimbus_status_t prepare(const nimbus_scene_info_t &) override {
+  nimbus_status_t prepare(const nimbus_scene_info_t &scene) override {
+    if (nimbus_status_t s = emission_.prepare(host().get(), lights_, scene); s != NIMBUS_OK) return s;
     const uint32_t n = lights_->count(host().get());
     nodes_.clear();
     parent_.clear();
@@ -62,7 +65,6 @@ class LightTree final : public sdk::LightSampler {
       const LightBounds b = bounds_of(info);
       if (b.phi > 0) finite.emplace_back(i, b);
     }
-    emission_ = AliasTable(power);
     if (!finite.empty()) {
       std::vector<BinaryNode> binary;
       binary.reserve(2 * finite.size());
@@ -129,10 +131,12 @@ class LightTree final : public sdk::LightSampler {
     return prob;
   }
 
-  uint32_t pick_emitter(float u, float *pmf) override {
-    const int64_t i = emission_.sample(u, pmf);
-    return i < 0 ? NIMBUS_NONE : uint32_t(i);
+  uint32_t pick_emitter(float u, float *pmf) override { return emission_.pick(u, pmf); }
+  bool adapts_emission() const override { return true; }
+  nimbus_status_t update_emission(const nimbus_emission_feedback_t &f) override {
+    return emission_.update(f);
   }
+  float pmf_emitter(uint32_t light) override { return emission_.pmf(light); }
 
  private:
   // The four lanes' importances at a node and their sum, summed the same way for pick() and pmf() so that
@@ -273,7 +277,7 @@ class LightTree final : public sdk::LightSampler {
   std::vector<Slot> parent_;  // of each wide node (root: none)
   std::vector<uint32_t> infinite_;
   std::vector<Slot> leaf_of_;  // of each light (none: infinite or no power)
-  AliasTable emission_;
+  sdk::EmitterSelection emission_;
   float p_infinite_ = 0;
 };
 

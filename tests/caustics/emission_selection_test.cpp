@@ -1,90 +1,143 @@
-// Light selection for photon emission (emission_selection.hpp, spec 6.1) against the rule computed by
-// hand: the prior's group split and camera-distance weights, the shrinkage of the adaptation, the
-// defensive share that keeps a light that never contributed reachable, LightMix's balance over groups,
-// and the state's round trip.
+// The solver's light selection for photon emission (emission_selection.hpp): it reports cumulative
+// per-light counts to the bound sampler's update_emission and freezes its pmf_emitter; a sampler built
+// before SDK 1.6 gets the kit's rule inside the solver; invalid probabilities are errors, not photons;
+// the counts survive the state's round trip.
 #include <gtest/gtest.h>
 
-#include <numeric>
+#include <vector>
 
 #include "emission_selection.hpp"
+#include "lights/emission_support.hpp"
 #include "state_bytes.hpp"
 
 namespace nimbus::caustics {
 namespace {
 
-double sum(const std::vector<double> &p) { return std::accumulate(p.begin(), p.end(), 0.0); }
+// A sampler table whose update_emission keeps a copy of what it was told and whose pmf_emitter returns
+// g_pmf.
+struct Told {
+  int calls = 0;
+  uint32_t flags = 0;
+  std::vector<double> power;
+  std::vector<uint64_t> emitted, contributed;
+  float camera[3] = {};
+} g_told;
+std::vector<float> g_pmf;
 
-TEST(CausticsEmissionSelection, PriorSplitsGroupsAndWeighsFiniteLightsByCameraDistance) {
+nimbus_light_sampler_v1_t feedback_sampler() {
+  nimbus_light_sampler_v1_t t{};
+  t.struct_size = sizeof(t);
+  t.update_emission = [](const nimbus_plugin_t *, const nimbus_emission_feedback_t *f) {
+    ++g_told.calls, g_told.flags = f->flags;
+    g_told.power.assign(f->photon_power, f->photon_power + f->light_count);
+    g_told.emitted.assign(f->emitted, f->emitted + f->light_count);
+    g_told.contributed.assign(f->contributed, f->contributed + f->light_count);
+    for (int k = 0; k < 3; ++k) g_told.camera[k] = f->camera[k];
+    return NIMBUS_OK;
+  };
+  t.pmf_emitter = [](const nimbus_plugin_t *, uint32_t l) { return l < g_pmf.size() ? g_pmf[l] : 0.0f; };
+  return t;
+}
+
+constexpr const char *kTwoLamps = R"(
+camera: { position: [0, -5, 1], look_at: [0, 0, 1] }
+materials:
+  white: { type: diffuse, albedo: [0.5, 0.5, 0.5] }
+objects:
+  - { shape: rectangle, size: [40, 40], material: white }
+lights:
+  - { type: point, position: [0, -4, 1], power: 10 }
+  - { type: point, position: [0, 5, 1], power: 40 }
+)";
+
+EmissionSelection::Inputs inputs(bool lightmix = false, bool power_only = false) {
+  return {{10.0, 40.0}, Vec3f(0, -5, 1), 30.0f, lightmix, power_only};
+}
+
+TEST(CausticsEmissionSelection, ReportsCumulativeCountsToTheSamplerAndFreezesItsTable) {
+  testing::LightsHarness scene(kTwoLamps);
+  const nimbus_light_sampler_v1_t table = feedback_sampler();
   EmissionSelection s;
-  // Two finite lights of equal power at distances 1 and 10, a sun of any power, and a dark light.
-  s.configure({{100, false, 1, 0}, {100, false, 100, 0}, {5, true, 1, 0}, {0, false, 1, 0}}, false);
-  const std::vector<double> p = s.probabilities();
-  EXPECT_NEAR(sum(p), 1.0, 1e-12);
-  EXPECT_DOUBLE_EQ(p[2], 0.5);                    // group I
-  EXPECT_NEAR(p[0], 0.5 * 100.0 / 101.0, 1e-12);  // 1/1 against 1/100
-  EXPECT_NEAR(p[1], 0.5 * 1.0 / 101.0, 1e-12);
-  EXPECT_EQ(p[3], 0.0);
-  // Without infinite lights the finite ones take everything.
-  EmissionSelection f;
-  f.configure({{1, false, 4, 0}, {3, false, 4, 0}}, false);
-  EXPECT_NEAR(f.probabilities()[1], 0.75, 1e-12);
-  // The measurement option: photon power alone, whatever the camera sees or the photons did.
+  ASSERT_EQ(s.configure(nullptr, &table, scene.host(), &scene.table(), inputs(true)), NIMBUS_OK);
+  EXPECT_TRUE(s.by_sampler());
+  g_told = {}, g_pmf = {0.3f, 0.7f};
+  std::vector<double> p;
+  std::string error;
+  ASSERT_EQ(s.probabilities(p, error), NIMBUS_OK) << error;
+  EXPECT_EQ(p, (std::vector<double>{double(0.3f), double(0.7f)}));
+  EXPECT_EQ(g_told.flags, NIMBUS_EMISSION_LIGHTMIX);
+  EXPECT_EQ(g_told.power, (std::vector<double>{10.0, 40.0}));
+  EXPECT_EQ(g_told.camera[1], -5.0f);
+  EXPECT_EQ(g_told.emitted, (std::vector<uint64_t>{0, 0}));
+  for (int pass = 0; pass < 2; ++pass)
+    for (int i = 0; i < 10; ++i) s.count(i % 2, i < 3);
+  ASSERT_EQ(s.probabilities(p, error), NIMBUS_OK) << error;
+  EXPECT_EQ(g_told.calls, 2);
+  EXPECT_EQ(g_told.emitted, (std::vector<uint64_t>{10, 10}));  // over both passes
+  EXPECT_EQ(g_told.contributed, (std::vector<uint64_t>{4, 2}));
+
+  // What no photon map may be traced with.
+  g_pmf = {0.0f, 1.0f};
+  EXPECT_NE(s.probabilities(p, error), NIMBUS_OK);
+  EXPECT_NE(error.find("light 0"), std::string::npos) << error;
+  g_pmf = {std::nanf(""), 1.0f};
+  EXPECT_NE(s.probabilities(p, error), NIMBUS_OK);
+  g_pmf = {0.5f, 1.5f};
+  EXPECT_NE(s.probabilities(p, error), NIMBUS_OK);
+}
+
+TEST(CausticsEmissionSelection, OlderSamplersGetTheKitsRuleAndPowerSelectionAsksNoSampler) {
+  testing::LightsHarness scene(kTwoLamps);
+  // A sampler built against SDK 1.5: its table ends before update_emission.
+  nimbus_light_sampler_v1_t old = feedback_sampler();
+  old.struct_size = offsetof(nimbus_light_sampler_v1_t, update_emission);
+  g_told = {};
+  EmissionSelection s;
+  ASSERT_EQ(s.configure(nullptr, &old, scene.host(), &scene.table(), inputs()), NIMBUS_OK);
+  EXPECT_FALSE(s.by_sampler());
+  std::vector<double> p;
+  std::string error;
+  ASSERT_EQ(s.probabilities(p, error), NIMBUS_OK) << error;
+  EXPECT_EQ(g_told.calls, 0);
+  // The kit's prior: 10 / 1^2 against 40 / 10^2.
+  EXPECT_NEAR(p[0], 10.0 / 10.4, 1e-6);
+  EXPECT_NEAR(p[1], 0.4 / 10.4, 1e-6);
+
+  const nimbus_light_sampler_v1_t table = feedback_sampler();
   EmissionSelection power;
-  power.configure({{100, false, 1, 0}, {100, false, 100, 0}, {5, true, 1, 0}}, false, false);
-  for (int i = 0; i < 100; ++i) power.count(0, true), power.count(1, false);
-  EXPECT_NEAR(power.probabilities()[0], 100.0 / 205.0, 1e-12);
-  EXPECT_NEAR(power.probabilities()[2], 5.0 / 205.0, 1e-12);
-}
-
-TEST(CausticsEmissionSelection, AdaptationShrinksCountsAndKeepsADefensiveShare) {
-  EmissionSelection s;
-  s.configure({{1, false, 1, 0}, {1, false, 1, 0}, {1, false, 1, 0}}, false);
-  // Light 0: 1000 paths, 300 contributed; light 1: 1000, none; light 2: never sampled.
-  for (int i = 0; i < 1000; ++i) s.count(0, i < 300), s.count(1, false);
-  const std::vector<double> p = s.probabilities();
-  const double mean = 300.0 / 2000.0, p0 = 1.0 / 3.0;
-  const double s0 = (300 + mean) / 1001, s1 = mean / 1001, s2 = mean / 1;
-  const double norm = p0 * (s0 + s1 + s2);
-  EXPECT_NEAR(p[0], 0.8 * p0 * s0 / norm + 0.2 * p0, 1e-12);
-  EXPECT_NEAR(p[1], 0.8 * p0 * s1 / norm + 0.2 * p0, 1e-12);
-  EXPECT_NEAR(p[2], 0.8 * p0 * s2 / norm + 0.2 * p0, 1e-12);
-  EXPECT_GE(p[1], 0.2 * p0);  // never below the defensive share
-  EXPECT_NEAR(sum(p), 1.0, 1e-12);
-  // Nothing contributed yet: the prior.
-  EmissionSelection idle;
-  idle.configure({{1, false, 1, 0}, {3, false, 1, 0}}, false);
-  for (int i = 0; i < 100; ++i) idle.count(0, false);
-  EXPECT_NEAR(idle.probabilities()[0], 0.25, 1e-12);
-}
-
-TEST(CausticsEmissionSelection, LightMixGivesEveryGroupHalfItsFairShare) {
-  EmissionSelection s;
-  // Group 0 holds a light 10^6 times brighter than group 1's.
-  s.configure({{1e6, false, 1, 0}, {1, false, 1, 1}}, true);
-  const std::vector<double> p = s.probabilities();
-  EXPECT_NEAR(sum(p), 1.0, 1e-12);
-  EXPECT_GE(p[1], 0.25);  // half of the paths are shared uniformly over the two groups
+  ASSERT_EQ(power.configure(nullptr, &table, scene.host(), &scene.table(), inputs(false, true)), NIMBUS_OK);
+  EXPECT_FALSE(power.by_sampler());
+  ASSERT_EQ(power.probabilities(p, error), NIMBUS_OK);
+  EXPECT_EQ(p, (std::vector<double>{10.0, 40.0}));
+  EXPECT_EQ(g_told.calls, 0);
 }
 
 TEST(CausticsEmissionSelection, StateRoundTripsAndRejectsImpossibleCounts) {
+  testing::LightsHarness scene(kTwoLamps);
+  const nimbus_light_sampler_v1_t table = feedback_sampler();
   EmissionSelection s;
-  s.configure({{1, false, 1, 0}, {2, true, 1, 0}}, false);
+  ASSERT_EQ(s.configure(nullptr, &table, scene.host(), &scene.table(), inputs()), NIMBUS_OK);
   for (int i = 0; i < 50; ++i) s.count(i % 2, i % 3 == 0);
   Bytes b;
   s.save(b);
   EmissionSelection back;
-  back.configure({{1, false, 1, 0}, {2, true, 1, 0}}, false);
+  ASSERT_EQ(back.configure(nullptr, &table, scene.host(), &scene.table(), inputs()), NIMBUS_OK);
   ASSERT_TRUE(back.restore(b));
-  EXPECT_EQ(back.probabilities(), s.probabilities());
+  g_pmf = {0.5f, 0.5f};
+  std::vector<double> p;
+  std::string error;
+  ASSERT_EQ(back.probabilities(p, error), NIMBUS_OK);
+  EXPECT_EQ(g_told.emitted, (std::vector<uint64_t>{25, 25}));
+  EXPECT_EQ(g_told.contributed, (std::vector<uint64_t>{9, 8}));
   Bytes bad;
   bad.put(uint64_t(2)), bad.put(uint64_t(5)), bad.put(uint64_t(6)), bad.put(uint64_t(1)),
       bad.put(uint64_t(0));
-  EmissionSelection untouched = back;
-  EXPECT_FALSE(untouched.restore(bad));  // 6 of 5 paths contributed
-  EXPECT_EQ(untouched.probabilities(), s.probabilities());
+  EXPECT_FALSE(back.restore(bad));  // 6 of 5 paths contributed
+  ASSERT_EQ(back.probabilities(p, error), NIMBUS_OK);
+  EXPECT_EQ(g_told.emitted, (std::vector<uint64_t>{25, 25})) << "a refused state changes nothing";
   Bytes wrong_size;
   wrong_size.put(uint64_t(3));
-  EXPECT_FALSE(untouched.restore(wrong_size));
+  EXPECT_FALSE(back.restore(wrong_size));
 }
 
 }  // namespace

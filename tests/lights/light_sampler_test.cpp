@@ -242,5 +242,55 @@ lights:
   EXPECT_EQ(boxed[1], 0u) << "the boxed lamp lights nothing";
 }
 
+// Photon emission through the sampler (light_sampler.h update_emission, since 1.6): the caustics solver
+// reports, before every photon pass, each lamp's photon power and its cumulative uniform paths and those
+// a lookup used, and emits by the table the sampler then holds (the fixture's: 1/3 and 2/3).
+TEST(LightSamplers, CausticsSolverEmitsPhotonsByTheSamplersFeedbackTable) {
+  SceneRenderer r({NIMBUS_LIGHT_FIXTURE_DIR});
+  const std::string scene = R"(
+render: { resolution: [48, 36], max_depth: 6 }
+camera: { position: [0, -5, 3], look_at: [0, 0, 0.4], up: [0, 0, 1], fov: 40 }
+materials:
+  white: { type: diffuse, albedo: [0.7, 0.7, 0.7] }
+  glass: { type: dielectric, ior: 1.5 }
+objects:
+  - { shape: rectangle, size: [20, 20], material: white }
+  - { shape: sphere, radius: 0.5, material: glass, transform: { translate: [0, 0, 0.5] } }
+lights:
+  - { type: point, position: [-0.5, 0, 3], power: 50 }
+  - { type: point, position: [0.5, 0, 3], power: 50 }
+)";
+  const std::string counts =
+      (std::filesystem::temp_directory_path() / ("nimbus-emission-" + std::to_string(::getpid()) + ".txt"))
+          .string();
+  ::setenv("NIMBUS_RECORDING_SAMPLER_OUT", counts.c_str(), 1);
+  RenderRequest req;
+  req.integrator = "nimbus.caustics", req.iterations = 256, req.seed = 5;
+  req.light_sampler = "org.nimbus.test.recording";
+  r.render(scene, req);
+  ::unsetenv("NIMBUS_RECORDING_SAMPLER_OUT");
+  std::ifstream in(counts);
+  uint64_t nee[4], ends[2], updates = 0, bad_feedback = 0, emitted[2], contributed[2];
+  double power[2];
+  ASSERT_TRUE(in >> nee[0] >> nee[1] >> nee[2] >> nee[3] >> ends[0] >> ends[1] >> updates >> bad_feedback >>
+              emitted[0] >> contributed[0] >> power[0] >> emitted[1] >> contributed[1] >> power[1])
+      << counts;
+  in.close();
+  std::filesystem::remove(counts);
+  EXPECT_EQ(bad_feedback, 0u) << "feedback of the wrong size, or counts that fell or exceed the emitted";
+  EXPECT_GE(updates, 3u) << "the first map's table, and one per later photon pass";
+  EXPECT_GT(power[0], 0.0);
+  EXPECT_GT(power[1], 0.0);
+  // The lamp of weight 2 emits 2/3 of the uniform paths: a binomial's sigma at n paths is
+  // sqrt(2/9 / n); 5 sigma.
+  const double n = double(emitted[0] + emitted[1]);
+  ASSERT_GT(n, 10000.0);
+  EXPECT_NEAR(double(emitted[1]) / n, 2.0 / 3.0, 5 * std::sqrt(2.0 / 9.0 / n));
+  // Both lamps focus light under the ball: lookups use some of each lamp's paths.
+  EXPECT_GT(contributed[0], 0u);
+  EXPECT_GT(contributed[1], 0u);
+  EXPECT_LE(contributed[1], emitted[1]);
+}
+
 }  // namespace
 }  // namespace nimbus::testing

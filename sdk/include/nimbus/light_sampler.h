@@ -1,5 +1,7 @@
 /* Nimbus SDK: the light-sampler plugin interface ("nimbus.iface.light-sampler" rev 1). A light sampler
- * decides which light next-event estimation (and photon emission) samples. */
+ * decides which light next-event estimation and photon emission sample. Since 1.6 an integrator that
+ * emits photons tells the sampler, before each photon pass, what its photons carry and which lights'
+ * photons were used (update_emission), and the sampler's emitter table follows. */
 #ifndef NIMBUS_LIGHT_SAMPLER_H
 #define NIMBUS_LIGHT_SAMPLER_H
 
@@ -18,6 +20,26 @@ typedef struct nimbus_scene_info {
   float scene_center[3];
   float scene_radius;
 } nimbus_scene_info_t;
+
+/* Since 1.6. What an integrator that emits photons reports before a photon pass (update_emission). The
+ * counts cover every earlier photon pass of the render, so the table is a function of this struct and
+ * of what prepare saw: a resumed render rebuilds it without any sampler state. */
+#define NIMBUS_S_TYPE_EMISSION_FEEDBACK 35u
+#define NIMBUS_EMISSION_LIGHTMIX 1u /* LightMix is requested: every group's layer must converge */
+typedef struct nimbus_emission_feedback {
+  nimbus_struct_header_t header; /* s_type = NIMBUS_S_TYPE_EMISSION_FEEDBACK */
+  uint32_t light_count;          /* length of the three arrays (the lights service's count) */
+  uint32_t flags;                /* NIMBUS_EMISSION_* */
+  float camera[3];               /* where the camera is (world space) */
+  float reserved;
+  /* Per light, borrowed: the flux the integrator's photons from it carry (0: it emits none, e.g. a
+   * uniform environment; may differ from nimbus_light_info_t.power where the integrator prunes). */
+  const double *photon_power;
+  /* Per light, borrowed: uniform photon paths emitted from it so far; guided paths are not counted. */
+  const uint64_t *emitted;
+  /* Per light, borrowed: of those, the paths with a photon that a lookup used with non-zero light. */
+  const uint64_t *contributed;
+} nimbus_emission_feedback_t;
 
 #define NIMBUS_IFACE_LIGHT_SAMPLER "nimbus.iface.light-sampler"
 typedef struct nimbus_light_sampler_v1 {
@@ -42,6 +64,17 @@ typedef struct nimbus_light_sampler_v1 {
   /* [main-thread] Optional (may be NULL): adapt tables between iterations; the host calls it after
    * every iteration's camera pass, before the integrator's end_iteration. */
   void (*end_iteration)(const nimbus_plugin_t *plugin, uint64_t iteration);
+  /* Since 1.6 (absent from older samplers' tables: check NIMBUS_HAS_MEMBER), optional (may be NULL,
+   * together with pmf_emitter). [main-thread, between-iterations] Rebuilds the table that pick_emitter
+   * and pmf_emitter read from feedback (borrowed); they read it until the next call, so every photon of
+   * a pass and every camera path that weighs them sees one table. Before the first call they pick by
+   * emitted power. */
+  nimbus_status_t (*update_emission)(const nimbus_plugin_t *plugin,
+                                     const nimbus_emission_feedback_t *feedback);
+  /* Since 1.6, optional (NULL exactly when update_emission is). [render-thread] The probability that
+   * pick_emitter returns `light` (an integrator's camera side weighs photons by it). Positive for every
+   * light whose photon_power is: a delta light behind glass has no other way into the image. */
+  float (*pmf_emitter)(const nimbus_plugin_t *plugin, uint32_t light);
 } nimbus_light_sampler_v1_t;
 
 #ifdef __cplusplus

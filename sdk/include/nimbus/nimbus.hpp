@@ -6,7 +6,8 @@
 //   };
 //   NIMBUS_PLUGIN_LIBRARY(MyIntegrator)
 //
-// nimbus::sdk::LightSampler and nimbus::sdk::Guide work the same way for the other plugin kinds.
+// nimbus::sdk::LightSampler works the same way for light samplers, nimbus::sdk::PhotonGuide
+// (nimbus/cpp/photon_guide.hpp) for guides.
 //
 // Trampolines catch every exception, log its text through the host and return NIMBUS_E_INTERNAL, so no
 // exception ever leaves the plugin.
@@ -195,10 +196,18 @@ class LightSampler : public Plugin {
   virtual bool adapts() const { return false; }
   virtual void record(const nimbus_thread_ctx_t &, uint32_t, float) {}
   virtual void end_iteration(uint64_t) {}
+  // A sampler whose photon emission follows an integrator's feedback (light_sampler.h, since 1.6)
+  // returns true from adapts_emission(): its table then carries update_emission and pmf_emitter, and
+  // pick_emitter must sample the table they describe (nimbus/cpp/emitter_selection.hpp implements the
+  // solver spec's rule). The others leave both NULL, and integrators keep their own emitter rule.
+  virtual bool adapts_emission() const { return false; }
+  virtual nimbus_status_t update_emission(const nimbus_emission_feedback_t &) { return NIMBUS_E_UNSUPPORTED; }
+  virtual float pmf_emitter(uint32_t) { return 0; }
 
   const void *interface(const char *id, uint32_t rev) override {
     if (rev != 1 || std::strcmp(id, NIMBUS_IFACE_LIGHT_SAMPLER) != 0) return nullptr;
-    return adapts() ? &table<true>() : &table<false>();
+    if (adapts_emission()) return adapts() ? &table<true, true>() : &table<false, true>();
+    return adapts() ? &table<true, false>() : &table<false, false>();
   }
 
  private:
@@ -213,7 +222,7 @@ class LightSampler : public Plugin {
     });
     return r;
   }
-  template <bool kAdapts>
+  template <bool kAdapts, bool kEmission>
   static const nimbus_light_sampler_v1_t &table() {
     static const nimbus_light_sampler_v1_t t = {
         sizeof(nimbus_light_sampler_v1_t),
@@ -236,65 +245,15 @@ class LightSampler : public Plugin {
                 : nullptr,
         kAdapts ? +[](const nimbus_plugin_t *p,
                       uint64_t it) { hot<int>(p, 0, [&] { return self(p)->end_iteration(it), 0; }); }
-                : nullptr};
-    return t;
-  }
-};
-
-// Base class for guides ("nimbus.iface.guiding" rev 1), e.g. a Metropolis photon guide. The host does
-// not bind a guide to renders yet (nimbus_render_setup_t.guide stays NULL); an integrator or a test may
-// create one and drive it through this table. Chains are per worker (ctx.worker_index), so no locks.
-class Guide : public Plugin {
- public:
-  virtual nimbus_status_t prepare(const nimbus_scene_info_t &) { return NIMBUS_OK; }
-  virtual nimbus_status_t begin_iteration(uint64_t) { return NIMBUS_OK; }
-  // Photon paths wanted in this iteration.
-  virtual uint64_t budget() = 0;
-  // Fill u[0, dims) with the primary-sample vector of photon path `path`.
-  virtual void propose(const nimbus_thread_ctx_t &ctx, uint64_t path, float *u, uint32_t dims) = 0;
-  virtual void report(const nimbus_thread_ctx_t &, uint64_t, bool) {}
-  virtual void end_iteration(uint64_t, const nimbus_guide_stats_t &) {}
-
-  const void *interface(const char *id, uint32_t rev) override {
-    return (rev == 1 && std::strcmp(id, NIMBUS_IFACE_GUIDING) == 0) ? &table() : nullptr;
-  }
-
- private:
-  static Guide *self(const nimbus_plugin_t *p) { return static_cast<Guide *>(from(p)); }
-  // Hooks without a status log an exception and go on: budget() falls back to 0 (no photon paths),
-  // propose() leaves the zero vector it was handed, so a failing guide degrades to no guidance.
-  template <class F>
-  static void quiet(const nimbus_plugin_t *p, const char *hook, F &&f) noexcept {
-    self(p)->guarded(hook, [&] {
-      f();
-      return NIMBUS_OK;
-    });
-  }
-  static const nimbus_guiding_v1_t &table() {
-    static const nimbus_guiding_v1_t t = {
-        sizeof(nimbus_guiding_v1_t),
-        [](const nimbus_plugin_t *p, const nimbus_scene_info_t *i) {
-          return self(p)->guarded("prepare", [&] { return self(p)->prepare(*i); });
-        },
-        [](const nimbus_plugin_t *p, uint64_t it) {
-          return self(p)->guarded("begin_iteration", [&] { return self(p)->begin_iteration(it); });
-        },
-        [](const nimbus_plugin_t *p) {
-          uint64_t n = 0;
-          quiet(p, "budget", [&] { n = self(p)->budget(); });
-          return n;
-        },
-        [](const nimbus_plugin_t *p, const nimbus_thread_ctx_t *c, uint64_t path, float *u, uint32_t dims) {
-          std::fill(u, u + dims, 0.0f);
-          quiet(p, "propose", [&] { self(p)->propose(*c, path, u, dims); });
-        },
-        [](const nimbus_plugin_t *p, const nimbus_thread_ctx_t *c, uint64_t path, int32_t visible) {
-          quiet(p, "report", [&] { self(p)->report(*c, path, visible != 0); });
-        },
-        [](const nimbus_plugin_t *p, uint64_t it, const nimbus_guide_stats_t *stats) {
-          const nimbus_guide_stats_t none{sizeof(nimbus_guide_stats_t), 0, 0, 0};
-          quiet(p, "end_iteration", [&] { self(p)->end_iteration(it, stats ? *stats : none); });
-        }};
+                : nullptr,
+        kEmission ? +[](const nimbus_plugin_t *p, const nimbus_emission_feedback_t *f) {
+          return self(p)->guarded("update_emission", [&] { return self(p)->update_emission(*f); });
+        }
+                  : nullptr,
+        kEmission ? +[](const nimbus_plugin_t *p, uint32_t l) {
+          return hot<float>(p, 0.0f, [&] { return self(p)->pmf_emitter(l); });
+        }
+                  : nullptr};
     return t;
   }
 };
@@ -394,5 +353,8 @@ struct Library {
         NIMBUS_DESCRIPTOR_VALUE_(ID, NAME, VENDOR, KIND, MAJOR, MINOR, PATCH, FEATURES, REQUIRED, &list); \
     return d;                                                                                             \
   }
+
+// The rev-1 guide base class, for sources written against SDK 1.1-1.4.
+#include "guide_v1.hpp"
 
 #endif /* NIMBUS_NIMBUS_HPP */
