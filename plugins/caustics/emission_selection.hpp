@@ -72,10 +72,6 @@ class EmissionSelection {
       const float q = iface_ ? iface_->pmf_emitter(sampler_, l) : own_.pmf(l);
       if (!(q >= 0 && q <= 1))
         return error = "pmf_emitter of light " + std::to_string(l) + " is not in [0, 1]", NIMBUS_E_INTERNAL;
-      if (q == 0 && in_.photon_power[l] > 0)
-        return error =
-                   "pmf_emitter gives light " + std::to_string(l) + ", which emits photons, probability 0",
-               NIMBUS_E_INTERNAL;
       p[l] = in_.photon_power[l] > 0 ? double(q) : 0.0;
     }
     return NIMBUS_OK;

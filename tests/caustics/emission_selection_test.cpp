@@ -1,6 +1,7 @@
 // The solver's light selection for photon emission (emission_selection.hpp): it reports cumulative
 // per-light counts to the bound sampler's update_emission and freezes its pmf_emitter; a sampler built
-// before SDK 1.6 gets the kit's rule inside the solver; invalid probabilities are errors, not photons;
+// before SDK 1.6 gets the kit's rule inside the solver; probabilities outside [0, 1] are errors, not
+// photons;
 // the counts survive the state's round trip.
 #include <gtest/gtest.h>
 
@@ -76,12 +77,14 @@ TEST(CausticsEmissionSelection, ReportsCumulativeCountsToTheSamplerAndFreezesIts
   EXPECT_EQ(g_told.emitted, (std::vector<uint64_t>{10, 10}));  // over both passes
   EXPECT_EQ(g_told.contributed, (std::vector<uint64_t>{4, 2}));
 
-  // What no photon map may be traced with.
+  // A light the table never picks (below its resolution) gets no photons, on both sides.
   g_pmf = {0.0f, 1.0f};
-  EXPECT_NE(s.probabilities(p, error), NIMBUS_OK);
-  EXPECT_NE(error.find("light 0"), std::string::npos) << error;
+  ASSERT_EQ(s.probabilities(p, error), NIMBUS_OK) << error;
+  EXPECT_EQ(p, (std::vector<double>{0.0, 1.0}));
+  // What no photon map may be traced with.
   g_pmf = {std::nanf(""), 1.0f};
   EXPECT_NE(s.probabilities(p, error), NIMBUS_OK);
+  EXPECT_NE(error.find("light 0"), std::string::npos) << error;
   g_pmf = {0.5f, 1.5f};
   EXPECT_NE(s.probabilities(p, error), NIMBUS_OK);
 }

@@ -72,8 +72,10 @@ typedef struct nimbus_light_sampler_v1 {
   nimbus_status_t (*update_emission)(const nimbus_plugin_t *plugin,
                                      const nimbus_emission_feedback_t *feedback);
   /* Since 1.6, optional (NULL exactly when update_emission is). [render-thread] The probability that
-   * pick_emitter returns `light` (an integrator's camera side weighs photons by it). Positive for every
-   * light whose photon_power is: a delta light behind glass has no other way into the image. */
+   * pick_emitter returns `light` (an integrator's camera side weighs photons by it): the rate at which
+   * it really picks, 0 for a light it never picks. Such a light's caustics are left to path tracing, which
+   * cannot reach a delta light behind glass, so a sampler keeps a defensive share for every light with
+   * photon_power. */
   float (*pmf_emitter)(const nimbus_plugin_t *plugin, uint32_t light);
 } nimbus_light_sampler_v1_t;
 
