@@ -50,7 +50,8 @@ def main():
                     run([a.nimbus, "render", scene, "-o", out, "--time", str(a.time), "--seed", str(seed),
                          "--threads", str(a.threads), "-q"] + how)
                     outs[m].append(out)
-            pt_iterations = statistics.median(int(exr_metadata(o).get("nimbus:iterations", 0)) for o in outs.get("pt", []))
+            pt_iterations = statistics.median(int(exr_metadata(o).get("nimbus:iterations", 0)) for o in outs["pt"]) \
+                if a.bound else 0
             for m in strategies:
                 beauty = [read_rgb(o) for o in outs[m]]
                 caustics = [read_rgb(o, "caustics") for o in outs[m]]
