@@ -281,7 +281,9 @@ TEST(CausticsEmitters, SunRectangleCoversTheBox) {
       const Vec3f p = o + w * (20 + 5 * uniform(rng));
       EXPECT_FLOAT_EQ(set.lp(0, Vec3f(), Vec3f(), w, p),
                       set.selection_pmf(0) * set.sun_pdf_pos(0, o, w) * pdf_dir);
-      if (um >= kOwnShare) EXPECT_FLOAT_EQ(set.sun_pdf_pos(0, o, w), on);
+      if (um >= kOwnShare) {
+        EXPECT_FLOAT_EQ(set.sun_pdf_pos(0, o, w), on);
+      }
     }
     // A line well outside the rectangle: only the scene disk's photons travel along it.
     EXPECT_FLOAT_EQ(set.lp(0, Vec3f(), Vec3f(), sun.axis, Vec3f(0, 6, 0)), scene_disk * pdf_dir);

@@ -73,7 +73,9 @@ TEST(CausticsImportanceMap, CellsCoverFourRadiiAndImportanceFallsWithSquaredLeng
     const int level = map.grid().level_for(r);
     const float size = std::ldexp(map.grid().h0, level);
     EXPECT_GE(size, 4 * r * (1 - 1e-6f)) << r;
-    if (level > 0) EXPECT_LT(size, 8 * r * (1 + 1e-6f)) << r;
+    if (level > 0) {
+      EXPECT_LT(size, 8 * r * (1 + 1e-6f)) << r;
+    }
   }
   EXPECT_FLOAT_EQ(map.importance(2.0f), 0.25f);
   EXPECT_FLOAT_EQ(map.importance(1e-9f), map.importance(0.1f));  // l_min = 1e-3 R = 0.1

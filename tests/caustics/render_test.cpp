@@ -302,8 +302,12 @@ void converges_to_light_tracer(const std::string &lights,
               region_mean(lt, core));
   EXPECT_GT(e1 / e2, min_fall);
   for (const auto &[key, value] : options) {
-    if (value == "guided") EXPECT_GT(stat(s2, "caustics_guided_passes"), 0.0);
-    if (value == "adaptive-map") EXPECT_GT(stat(s2, "caustics_emission_map_slots"), 0.0);
+    if (value == "guided") {
+      EXPECT_GT(stat(s2, "caustics_guided_passes"), 0.0);
+    }
+    if (value == "adaptive-map") {
+      EXPECT_GT(stat(s2, "caustics_emission_map_slots"), 0.0);
+    }
   }
   EXPECT_NEAR(mean / region_mean(lt, caustic), 1.0, 0.03);
   EXPECT_NEAR(mean_core / region_mean(lt, core), 1.0, 0.04);

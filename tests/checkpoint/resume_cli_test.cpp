@@ -150,7 +150,9 @@ void expect_caustics_solver_resumes_exactly(const std::vector<std::string> &opti
   const auto slots = meta_number(*a, "nimbus:stat:caustics_emission_map_slots");
   ASSERT_TRUE(slots);
   EXPECT_EQ(meta_number(*b, "nimbus:stat:caustics_emission_map_slots"), slots);
-  if (options.size() > 1 && options[1] == "adaptive-map") EXPECT_GE(*slots, 1.0) << "the map learnt";
+  if (options.size() > 1 && options[1] == "adaptive-map") {
+    EXPECT_GE(*slots, 1.0) << "the map learnt";
+  }
 }
 
 TEST(Resume, CausticsSolverResumesExactlyWithItsLearntState) { expect_caustics_solver_resumes_exactly({}); }

@@ -99,7 +99,9 @@ TEST(RayQuery, BoxHitsAllSixFacesWithOutwardNormals) {
   // Grazing: a ray along a face's plane, exactly on the edge, finds the box or misses, never NaN.
   nimbus_hit_t hit;
   (*g)->intersect(make_ray({-5, 1, 0}, {1, 0, 0}), hit);
-  if (hit.geom_id != NIMBUS_NONE) EXPECT_TRUE(std::isfinite(hit.t));
+  if (hit.geom_id != NIMBUS_NONE) {
+    EXPECT_TRUE(std::isfinite(hit.t));
+  }
 }
 
 // Rays spawned from a hit point, offset by the interaction's eps, must not hit the same surface again
@@ -111,7 +113,6 @@ TEST_P(SelfIntersection, SpawnedRaysLeaveTheSurface) {
   ShapeDesc b;
   b.type = ShapeType::Box;
   b.mesh = box_mesh(Vec3f(-1 * scale), Vec3f(1 * scale));
-  b.mesh.positions.size();
   for (Vec3f &p : b.mesh.positions) p += Vec3f(3 * scale, 0, 0);
   const SceneDesc d = scene_with({sphere({0, 0, 0}, scale), b});
   auto g = GeometryScene::build(d);
@@ -145,7 +146,9 @@ TEST_P(SelfIntersection, SpawnedRaysLeaveTheSurface) {
     nimbus_hit_t h3;
     (*g)->intersect(r3, h3);
     EXPECT_EQ(h3.geom_id, hit.geom_id);
-    if (h3.geom_id == hit.geom_id) EXPECT_GT(h3.t, 1e-3f * scale);
+    if (h3.geom_id == hit.geom_id) {
+      EXPECT_GT(h3.t, 1e-3f * scale);
+    }
   }
   EXPECT_GT(tests, 500);
   EXPECT_EQ(acne, 0);

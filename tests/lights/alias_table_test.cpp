@@ -27,9 +27,13 @@ void expect_pmf_is_rate(const std::vector<double> &weights, double rel_tol) {
     const double rate = double(counts[i]) * 0x1p-24;
     EXPECT_NEAR(rate, table.pmf(i), rel_tol * table.pmf(i) + 1e-12)
         << "bin " << i << " of " << weights.size();
-    if (weights[i] == 0) EXPECT_EQ(counts[i], 0u) << "a zero weight is never picked";
+    if (weights[i] == 0) {
+      EXPECT_EQ(counts[i], 0u) << "a zero weight is never picked";
+    }
     // Weights well above the resolution (2^-24 per value of u) keep their proportion.
-    if (weights[i] / sum > 1e-4) EXPECT_NEAR(table.pmf(i), weights[i] / sum, 2e-3 * weights[i] / sum);
+    if (weights[i] / sum > 1e-4) {
+      EXPECT_NEAR(table.pmf(i), weights[i] / sum, 2e-3 * weights[i] / sum);
+    }
   }
 }
 

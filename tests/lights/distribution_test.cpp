@@ -38,7 +38,9 @@ void expect_rates_match_pdf(const std::vector<float> &f, size_t w, size_t h) {
     EXPECT_NEAR(d.cell_pdf(c) / double(w * h), expected, 1e-6 + 1e-5 * expected) << "cell " << c;
     // One stratum of 1/kGrid in each direction per cell edge.
     EXPECT_NEAR(rate, expected, 4.0 / kGrid * std::sqrt(expected) + 2e-6) << "cell " << c;
-    if (expected == 0) EXPECT_EQ(count[c], 0) << "a zero-weight cell is never sampled";
+    if (expected == 0) {
+      EXPECT_EQ(count[c], 0) << "a zero-weight cell is never sampled";
+    }
   }
 }
 
