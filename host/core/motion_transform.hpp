@@ -158,6 +158,8 @@ class MotionTransform {
   }
 
   bool moves() const { return steps_.size() > 1; }
+  float open() const { return open_; }
+  float close() const { return close_; }
   // Embree's time steps (evenly spaced over [open, close]).
   const std::vector<Decomposed> &steps() const { return steps_; }
   // The transform at scene time t (held still outside the shutter).

@@ -1,5 +1,6 @@
 #include "geometry/geometry_scene.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -26,6 +27,35 @@ RTCGeometry make_triangle_geometry(RTCDevice device, const MeshData &mesh) {
 }
 
 void set_vec(float out[3], const Vec3f &v) { v.store(out); }
+
+// A moving mesh: its object-space triangles in a scene of their own, instanced with one transform per
+// time step (Embree interpolates them at each ray's time, as MotionTransform::at does).
+RTCGeometry make_moving_instance(RTCDevice device, const MeshData &mesh, const MotionTransform &motion,
+                                 RTCScene &object_scene) {
+  object_scene = rtcNewScene(device);
+  rtcSetSceneFlags(object_scene, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry triangles = make_triangle_geometry(device, mesh);
+  rtcAttachGeometryByID(object_scene, triangles, 0);
+  rtcReleaseGeometry(triangles);
+  rtcCommitScene(object_scene);
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(g, object_scene);
+  const std::vector<Decomposed> &steps = motion.steps();
+  rtcSetGeometryTimeStepCount(g, unsigned(steps.size()));
+  for (size_t s = 0; s < steps.size(); ++s) {
+    const Decomposed &d = steps[s];
+    RTCQuaternionDecomposition q;
+    rtcInitQuaternionDecomposition(&q);
+    rtcQuaternionDecompositionSetScale(&q, d.scale_skew[0], d.scale_skew[1], d.scale_skew[2]);
+    rtcQuaternionDecompositionSetSkew(&q, d.scale_skew[3], d.scale_skew[4], d.scale_skew[5]);
+    rtcQuaternionDecompositionSetShift(&q, d.shift[0], d.shift[1], d.shift[2]);
+    rtcQuaternionDecompositionSetQuaternion(&q, d.rotation.r, d.rotation.i, d.rotation.j, d.rotation.k);
+    rtcQuaternionDecompositionSetTranslation(&q, d.translation[0], d.translation[1], d.translation[2]);
+    rtcSetGeometryTransformQuaternion(g, unsigned(s), &q);
+  }
+  rtcCommitGeometry(g);
+  return g;
+}
 
 }  // namespace
 
@@ -56,6 +86,25 @@ Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &d
       gs->bounds_max_ = max(gs->bounds_max_, sd.center + r);
       gs->shapes_.push_back(rec);
       g = make_analytic_geometry(gs->device_, gs->shapes_.back());
+    } else if (sd.motion) {
+      // Bounds: the object's box at every time step (its sweep between steps stays near them).
+      rec.mesh = &sd.mesh, rec.motion = sd.motion.get();
+      Vec3f lo(kInfinity), hi(-kInfinity);
+      for (const Vec3f &q : sd.mesh.positions) lo = min(lo, q), hi = max(hi, q);
+      for (const Decomposed &d : sd.motion->steps())
+        for (int c = 0; c < 8; ++c) {
+          const Vec3f corner{c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z};
+          const Vec3f w = d.matrix().point(corner);
+          gs->bounds_min_ = min(gs->bounds_min_, w), gs->bounds_max_ = max(gs->bounds_max_, w);
+        }
+      if (sd.motion->moves()) {
+        gs->moves_ = true;
+        gs->shutter_open_ = sd.motion->open(), gs->shutter_close_ = sd.motion->close();
+      }
+      gs->shapes_.push_back(rec);
+      RTCScene object_scene = nullptr;
+      g = make_moving_instance(gs->device_, sd.mesh, *sd.motion, object_scene);
+      gs->object_scenes_.push_back(object_scene);
     } else {
       rec.mesh = &sd.mesh;
       const auto &p = sd.mesh.positions;
@@ -79,17 +128,22 @@ Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &d
 
 GeometryScene::~GeometryScene() {
   if (scene_) rtcReleaseScene(scene_);
+  for (RTCScene s : object_scenes_) rtcReleaseScene(s);
   if (device_) rtcReleaseDevice(device_);
 }
 
-void GeometryScene::intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit) const {
+float GeometryScene::embree_time(float time) const {
+  return moves_ ? std::clamp((time - shutter_open_) / (shutter_close_ - shutter_open_), 0.0f, 1.0f) : 0.0f;
+}
+
+void GeometryScene::intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit, float time) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh;
   rh.ray.org_x = ray.org[0], rh.ray.org_y = ray.org[1], rh.ray.org_z = ray.org[2];
   rh.ray.dir_x = ray.dir[0], rh.ray.dir_y = ray.dir[1], rh.ray.dir_z = ray.dir[2];
   rh.ray.tnear = ray.tnear, rh.ray.tfar = ray.tfar;
-  rh.ray.time = 0, rh.ray.mask = 0xFFFFFFFFu, rh.ray.id = 0, rh.ray.flags = 0;
+  rh.ray.time = embree_time(time), rh.ray.mask = 0xFFFFFFFFu, rh.ray.id = 0, rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   if (!(ray.tnear <= ray.tfar)) {  // inactive ray
@@ -101,10 +155,13 @@ void GeometryScene::intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit) const 
     hit = {kInfinity, 0, 0, NIMBUS_NONE, NIMBUS_NONE, NIMBUS_NONE};
     return;
   }
-  hit = {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID, NIMBUS_NONE};
+  // A moving mesh is hit inside its instance: the shape is the instance's id.
+  const bool instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
+  hit = {rh.ray.tfar,   rh.hit.u,   rh.hit.v, instanced ? rh.hit.instID[0] : rh.hit.geomID,
+         rh.hit.primID, NIMBUS_NONE};
 }
 
-bool GeometryScene::occluded(const nimbus_ray_t &ray) const {
+bool GeometryScene::occluded(const nimbus_ray_t &ray, float time) const {
   if (!(ray.tnear <= ray.tfar)) return false;
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
@@ -112,13 +169,13 @@ bool GeometryScene::occluded(const nimbus_ray_t &ray) const {
   r.org_x = ray.org[0], r.org_y = ray.org[1], r.org_z = ray.org[2];
   r.dir_x = ray.dir[0], r.dir_y = ray.dir[1], r.dir_z = ray.dir[2];
   r.tnear = ray.tnear, r.tfar = ray.tfar;
-  r.time = 0, r.mask = 0xFFFFFFFFu, r.id = 0, r.flags = 0;
+  r.time = embree_time(time), r.mask = 0xFFFFFFFFu, r.id = 0, r.flags = 0;
   rtcOccluded1(scene_, &ctx, &r);
   return r.tfar < 0;
 }
 
-void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit,
-                                nimbus_interaction_t &out) const {
+void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out,
+                                float time) const {
   std::memset(&out, 0, sizeof(out));
   const ShapeRecord &s = shapes_[hit.geom_id];
   const Vec3f org = Vec3f::load(ray.org), dir = Vec3f::load(ray.dir);
@@ -191,6 +248,19 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       }
       break;
     }
+  }
+  if (s.motion) {
+    // The object-space surface at the ray's time; the transform's own rounding joins the error bound.
+    const Transform m = s.motion->at(time);
+    Vec3f moved_error;
+    for (int r = 0; r < 3; ++r) {  // pbrt-v4 6.8.6: the carried error through |M|, plus the product's own
+      float carried = 0, own = std::abs(m(r, 3));
+      for (int c = 0; c < 3; ++c) carried += std::abs(m(r, c)) * error[c], own += std::abs(m(r, c) * p[c]);
+      moved_error[r] = (1 + rounding_gamma(3)) * carried + rounding_gamma(3) * own;
+    }
+    p = m.point(p), error = moved_error;
+    ng = normalize(m.normal(ng)), ns = normalize(m.normal(ns));
+    dpdu = m.vector(dpdu), dpdv = m.vector(dpdv);
   }
   set_vec(out.p, p);
   out.eps = offset_distance(ng, error);

@@ -24,6 +24,8 @@ struct ShapeRecord {
   float radius = 0;
   const MeshData *mesh = nullptr;  // triangle shapes: points into the SceneDesc (kept alive by the owner)
   float area = 0;
+  // A moving mesh (its triangles in object space, an Embree instance with time steps); null when static.
+  const MotionTransform *motion = nullptr;
 };
 
 class GeometryScene {
@@ -34,9 +36,13 @@ class GeometryScene {
   GeometryScene(const GeometryScene &) = delete;
   GeometryScene &operator=(const GeometryScene &) = delete;
 
-  void intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit) const;
-  bool occluded(const nimbus_ray_t &ray) const;
-  void interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out) const;
+  // Queries at scene time `time` (within the shutter; static scenes ignore it).
+  void intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit, float time = 0) const;
+  bool occluded(const nimbus_ray_t &ray, float time = 0) const;
+  void interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out,
+                   float time = 0) const;
+  // Whether some shape moves over the shutter (rays then need their time).
+  bool moves() const { return moves_; }
 
   RTCScene rtc_scene() const { return scene_; }  // for benchmarks against Embree itself
   std::vector<ShapeRecord> &shapes() { return shapes_; }
@@ -49,10 +55,14 @@ class GeometryScene {
 
  private:
   GeometryScene() = default;
+  float embree_time(float time) const;  // scene time to Embree's [0, 1] over the shutter
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<ShapeRecord> shapes_;
   Vec3f bounds_min_{kInfinity}, bounds_max_{-kInfinity};
+  std::vector<RTCScene> object_scenes_;  // the moving meshes' own scenes (instanced)
+  bool moves_ = false;
+  float shutter_open_ = 0, shutter_close_ = 0;  // Embree's ray time [0, 1] spans it
 };
 
 // Geometric normal of triangle `prim` of a mesh, oriented like the interaction's ng: towards the

@@ -5,10 +5,12 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nimbus/cpp/math.hpp>
+#include "core/motion_transform.hpp"
 #include "core/transform.hpp"
 #include "scene/pixel_filter_type.hpp"
 #include "scene/source_log.hpp"
@@ -109,8 +111,11 @@ struct ShapeDesc {
   Vec3f center{0, 0, 0};
   float radius = 1;
   Vec3f normal{0, 0, 1};  // disk
-  // Rectangle, box and mesh: triangles already in world space (rectangle: 2, box: 12).
+  // Rectangle, box and mesh: triangles already in world space (rectangle: 2, box: 12), or in object space
+  // when `motion` moves them.
   MeshData mesh;
+  // A mesh that moves over the shutter: its transform at each time; null for a static shape.
+  std::shared_ptr<const MotionTransform> motion;
   uint32_t material = 0;  // index into SceneDesc::materials
   // Area emission: radiance in W/(m^2 sr) per channel; black = not an emitter.
   Rgb emission{0, 0, 0};

@@ -29,13 +29,19 @@ objects:
       transform: { rotate: [180, 0, 0], translate: [0, 0, 1.99] } }
 )";
 
+RenderRequest request(const std::string &integrator, uint64_t iterations, uint64_t seed) {
+  RenderRequest req;
+  req.integrator = integrator, req.iterations = iterations, req.seed = seed;
+  return req;
+}
+
 TEST(PtLtAgreement, DifferenceFallsAsOneOverIterations) {
   SceneRenderer r;
   const uint64_t n = 64;
-  const auto pt1 = r.render(kDiffuseCornell, {"nimbus.pt", n, 11});
-  const auto lt1 = r.render(kDiffuseCornell, {"nimbus.lt", n, 12});
-  const auto pt4 = r.render(kDiffuseCornell, {"nimbus.pt", 8 * n, 13});
-  const auto lt4 = r.render(kDiffuseCornell, {"nimbus.lt", 8 * n, 14});
+  const auto pt1 = r.render(kDiffuseCornell, request("nimbus.pt", n, 11));
+  const auto lt1 = r.render(kDiffuseCornell, request("nimbus.lt", n, 12));
+  const auto pt4 = r.render(kDiffuseCornell, request("nimbus.pt", 8 * n, 13));
+  const auto lt4 = r.render(kDiffuseCornell, request("nimbus.lt", 8 * n, 14));
   const double e1 = rel_mse(pt1.layers.at("beauty").data, lt1.layers.at("beauty").data);
   const double e8 = rel_mse(pt4.layers.at("beauty").data, lt4.layers.at("beauty").data);
   std::printf("relMSE(pt, lt): %.3g at %llu iterations, %.3g at %llu (ratio %.2f)\n", e1,
