@@ -13,12 +13,19 @@ float triangle_area(const Vec3f &a, const Vec3f &b, const Vec3f &c) {
   return 0.5f * length(cross(b - a, c - a));
 }
 
+// A deforming mesh has one vertex buffer per time step, which Embree interpolates at each ray's time.
 RTCGeometry make_triangle_geometry(RTCDevice device, const MeshData &mesh) {
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  // Embree reads 16 bytes per vertex (SSE loads): allocate through Embree so the padding is handled.
-  auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                         3 * sizeof(float), mesh.positions.size()));
-  for (size_t i = 0; i < mesh.positions.size(); ++i) mesh.positions[i].store(v + 3 * i);
+  const bool deforms = mesh.deforms();
+  if (deforms) rtcSetGeometryTimeStepCount(g, unsigned(mesh.position_steps.size()));
+  const size_t steps = deforms ? mesh.position_steps.size() : 1;
+  for (size_t s = 0; s < steps; ++s) {
+    const std::vector<Vec3f> &positions = deforms ? mesh.position_steps[s] : mesh.positions;
+    // Embree reads 16 bytes per vertex (SSE loads): allocate through Embree so the padding is handled.
+    auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_VERTEX, unsigned(s), RTC_FORMAT_FLOAT3, 3 * sizeof(float), positions.size()));
+    for (size_t i = 0; i < positions.size(); ++i) positions[i].store(v + 3 * i);
+  }
   auto *idx = static_cast<uint32_t *>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(uint32_t), mesh.indices.size() / 3));
   std::memcpy(idx, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
@@ -113,6 +120,13 @@ Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &d
             triangle_area(p[sd.mesh.indices[t]], p[sd.mesh.indices[t + 1]], p[sd.mesh.indices[t + 2]]);
       for (const Vec3f &q : p)
         gs->bounds_min_ = min(gs->bounds_min_, q), gs->bounds_max_ = max(gs->bounds_max_, q);
+      if (sd.mesh.deforms()) {
+        for (const std::vector<Vec3f> &step : sd.mesh.position_steps)
+          for (const Vec3f &q : step)
+            gs->bounds_min_ = min(gs->bounds_min_, q), gs->bounds_max_ = max(gs->bounds_max_, q);
+        gs->moves_ = true;
+        gs->shutter_open_ = sd.mesh.steps_open, gs->shutter_close_ = sd.mesh.steps_close;
+      }
       gs->shapes_.push_back(rec);
       g = make_triangle_geometry(gs->device_, sd.mesh);
     }
@@ -212,7 +226,21 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       const MeshData &m = *s.mesh;
       const uint32_t i0 = m.indices[3 * hit.prim_id], i1 = m.indices[3 * hit.prim_id + 1],
                      i2 = m.indices[3 * hit.prim_id + 2];
-      const Vec3f &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
+      // The triangle at the ray's time: a deforming mesh's vertices (and normals) between two time steps,
+      // interpolated linearly as Embree does.
+      Vec3f p0 = m.positions[i0], p1 = m.positions[i1], p2 = m.positions[i2], n[3];
+      if (!m.normals.empty()) n[0] = m.normals[i0], n[1] = m.normals[i1], n[2] = m.normals[i2];
+      if (m.deforms()) {
+        const float x = embree_time(time) * float(m.position_steps.size() - 1);
+        const size_t k = std::min(size_t(x), m.position_steps.size() - 2);
+        const float f = x - float(k);
+        const auto lerp = [&](const std::vector<std::vector<Vec3f>> &steps, uint32_t i) {
+          return steps[k][i] * (1 - f) + steps[k + 1][i] * f;
+        };
+        p0 = lerp(m.position_steps, i0), p1 = lerp(m.position_steps, i1), p2 = lerp(m.position_steps, i2);
+        if (!m.normal_steps.empty())
+          n[0] = lerp(m.normal_steps, i0), n[1] = lerp(m.normal_steps, i1), n[2] = lerp(m.normal_steps, i2);
+      }
       const float b1 = hit.u, b2 = hit.v, b0 = 1 - b1 - b2;
       // Barycentric interpolation is far more accurate than o + t d (pbrt-v4 section 6.8).
       p = p0 * b0 + p1 * b1 + p2 * b2;
@@ -228,7 +256,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
         error += abs(p) * rounding_gamma(3);
       }
       const Vec3f e1 = p1 - p0, e2 = p2 - p0;
-      ng = oriented_triangle_normal(m, hit.prim_id, b1, b2);
+      ng = oriented_triangle_normal(p0, p1, p2, m.normals.empty() ? nullptr : n, b1, b2);
       Vec2f uv0{0, 0}, uv1{1, 0}, uv2{1, 1};
       if (!m.uvs.empty()) uv0 = m.uvs[i0], uv1 = m.uvs[i1], uv2 = m.uvs[i2];
       uv = {uv0.x * b0 + uv1.x * b1 + uv2.x * b2, uv0.y * b0 + uv1.y * b1 + uv2.y * b2};
@@ -243,8 +271,8 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       }
       ns = ng;
       if (!m.normals.empty()) {
-        const Vec3f n = m.normals[i0] * b0 + m.normals[i1] * b1 + m.normals[i2] * b2;
-        if (length_squared(n) > 0) ns = normalize(n);
+        const Vec3f shading = n[0] * b0 + n[1] * b1 + n[2] * b2;
+        if (length_squared(shading) > 0) ns = normalize(shading);
       }
       break;
     }

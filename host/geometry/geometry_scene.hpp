@@ -1,5 +1,7 @@
 // The scene's geometry in Embree 3: one Embree geometry per scene shape (geom_id = shape index),
-// closest-hit and occlusion queries, and the surface details (interaction) of a hit.
+// closest-hit and occlusion queries, and the surface details (interaction) of a hit. Shapes that move
+// over the shutter are Embree instances with time steps (rigid motion) or meshes with one vertex buffer
+// per time step (deformation); queries then take the scene time of the ray.
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -65,16 +67,22 @@ class GeometryScene {
   float shutter_open_ = 0, shutter_close_ = 0;  // Embree's ray time [0, 1] spans it
 };
 
-// Geometric normal of triangle `prim` of a mesh, oriented like the interaction's ng: towards the
-// interpolated shading normal when the mesh has normals, else by the winding (right-handed).
+// Geometric normal of a triangle, oriented like the interaction's ng: towards the interpolated shading
+// normal when there are vertex normals (n, three of them, or null), else by the winding (right-handed).
+inline Vec3f oriented_triangle_normal(const Vec3f &p0, const Vec3f &p1, const Vec3f &p2, const Vec3f *n,
+                                      float b1, float b2) {
+  Vec3f ng = normalize(cross(p1 - p0, p2 - p0));
+  if (n && dot(n[0] * (1 - b1 - b2) + n[1] * b1 + n[2] * b2, ng) < 0) ng = -ng;
+  return ng;
+}
+// The same for triangle `prim` of a mesh (its rest positions).
 inline Vec3f oriented_triangle_normal(const MeshData &m, uint32_t prim, float b1, float b2) {
   const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
-  Vec3f ng = normalize(cross(m.positions[i1] - m.positions[i0], m.positions[i2] - m.positions[i0]));
-  if (!m.normals.empty()) {
-    const Vec3f n = m.normals[i0] * (1 - b1 - b2) + m.normals[i1] * b1 + m.normals[i2] * b2;
-    if (dot(n, ng) < 0) ng = -ng;
-  }
-  return ng;
+  const Vec3f n[3] = {m.normals.empty() ? Vec3f() : m.normals[i0],
+                      m.normals.empty() ? Vec3f() : m.normals[i1],
+                      m.normals.empty() ? Vec3f() : m.normals[i2]};
+  return oriented_triangle_normal(m.positions[i0], m.positions[i1], m.positions[i2],
+                                  m.normals.empty() ? nullptr : n, b1, b2);
 }
 
 // pbrt-v4's gamma(n): the relative error bound of n chained float operations (u = 2^-24).

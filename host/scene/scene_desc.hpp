@@ -103,6 +103,11 @@ struct MeshData {
   std::vector<Vec3f> normals;     // per vertex, world space; empty = flat shading
   std::vector<Vec2f> uvs;         // per vertex; may be empty
   std::vector<uint32_t> indices;  // 3 per triangle
+  // Deformation blur: the positions (and normals, when the mesh has them) at evenly spaced times over the
+  // shutter [steps_open, steps_close], each set as long as `positions`; empty when the mesh keeps its shape.
+  std::vector<std::vector<Vec3f>> position_steps, normal_steps;
+  float steps_open = 0, steps_close = 0;
+  bool deforms() const { return position_steps.size() > 1; }
 };
 
 struct ShapeDesc {

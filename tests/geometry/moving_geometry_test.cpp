@@ -1,10 +1,11 @@
-// Moving meshes (Embree instances with time steps): a ray meets a mesh where it is at the ray's time,
-// and the host's surface at that time (MotionTransform::at) lies where Embree's interpolated instance
-// was hit, for translations, rotations and scales together.
+// Moving meshes (Embree instances with time steps) and deforming ones (a vertex buffer per time step): a
+// ray meets a mesh where it is at the ray's time, and the host's surface at that time lies where Embree
+// hit it, for translations, rotations and scales together, and for vertices and normals between steps.
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <random>
+#include <tuple>
 
 #include "geometry/geometry_scene.hpp"
 #include "scene/mesh_builders.hpp"
@@ -106,6 +107,50 @@ TEST(MovingGeometry, OneKeyHoldsStill) {
   (*g)->intersect(ray_from({1.4f, -5, 0}, {0, 1, 0}), hit, 0.7f);
   EXPECT_EQ(hit.geom_id, 0u);
   EXPECT_NEAR(hit.t, 4.5f, 1e-4f);
+}
+
+// A deforming quad (deformation blur): vertex buffers at three evenly spaced times over the shutter
+// [1, 3], rising from z = 0 to z = 1 and back, its normals tilting from +z towards +x and back.
+TEST(MovingGeometry, DeformingMeshIsWhereItsStepsPutItAtTheRaysTime) {
+  SceneDesc d;
+  d.materials.push_back(MaterialDesc{});
+  ShapeDesc quad;
+  quad.type = ShapeType::Mesh;
+  quad.mesh.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  quad.mesh.normals.assign(4, Vec3f(0, 0, 1));
+  quad.mesh.indices = {0, 1, 2, 0, 2, 3};
+  const auto lifted = [&](float z) {
+    std::vector<Vec3f> p = quad.mesh.positions;
+    for (Vec3f &q : p) q.z = z;
+    return p;
+  };
+  quad.mesh.position_steps = {lifted(0), lifted(1), lifted(0)};
+  const Vec3f tilted = normalize(Vec3f(1, 0, 1));
+  quad.mesh.normal_steps = {std::vector<Vec3f>(4, Vec3f(0, 0, 1)), std::vector<Vec3f>(4, tilted),
+                            std::vector<Vec3f>(4, Vec3f(0, 0, 1))};
+  quad.mesh.steps_open = 1, quad.mesh.steps_close = 3;
+  d.shapes = {quad};
+  auto g = GeometryScene::build(d);
+  ASSERT_TRUE(g.ok()) << g.error().message;
+  EXPECT_TRUE((*g)->moves());
+  EXPECT_NEAR((*g)->bounds_max().z, 1.0f, 1e-6f);
+  const nimbus_ray_t down = ray_from({0.3f, 0.2f, 5}, {0, 0, -1});
+  for (const auto &[time, z, tilt] : {std::tuple{1.0f, 0.0f, 0.0f},
+                                      {1.5f, 0.5f, 0.5f},
+                                      {2.0f, 1.0f, 1.0f},
+                                      {2.5f, 0.5f, 0.5f},
+                                      {3.0f, 0.0f, 0.0f}}) {
+    nimbus_hit_t hit{};
+    (*g)->intersect(down, hit, time);
+    ASSERT_EQ(hit.geom_id, 0u) << "time " << time;
+    EXPECT_NEAR(hit.t, 5 - z, 1e-5f) << "time " << time;
+    nimbus_interaction_t ix{};
+    (*g)->interaction(down, hit, ix, time);
+    EXPECT_NEAR(ix.p[2], z, 1e-5f) << "time " << time;
+    const Vec3f ns = normalize(Vec3f(0, 0, 1) * (1 - tilt) + tilted * tilt);
+    EXPECT_NEAR(dot(Vec3f::load(ix.ns), ns), 1.0f, 1e-5f) << "time " << time;
+    EXPECT_NEAR(ix.ng[2], 1.0f, 1e-6f);
+  }
 }
 
 }  // namespace
