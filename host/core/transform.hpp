@@ -61,6 +61,22 @@ class Transform {
     return m_[0] * (m_[5] * m_[10] - m_[6] * m_[9]) - m_[1] * (m_[4] * m_[10] - m_[6] * m_[8]) +
            m_[2] * (m_[4] * m_[9] - m_[5] * m_[8]);
   }
+  // The inverse affine transform (the linear part by cofactors over the determinant); the transform must
+  // not be singular.
+  Transform inverse() const {
+    const double det = determinant3();
+    std::array<float, 16> r{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
+    const auto at = [&](int i, int j) { return double(m_[size_t(i * 4 + j)]); };
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {  // inverse(i, j) = cofactor(j, i) / det
+        const int a0 = (j + 1) % 3, a1 = (j + 2) % 3, b0 = (i + 1) % 3, b1 = (i + 2) % 3;
+        r[size_t(i * 4 + j)] = float((at(a0, b0) * at(a1, b1) - at(a0, b1) * at(a1, b0)) / det);
+      }
+    for (int i = 0; i < 3; ++i)
+      r[size_t(i * 4 + 3)] =
+          -(r[size_t(i * 4)] * m_[3] + r[size_t(i * 4 + 1)] * m_[7] + r[size_t(i * 4 + 2)] * m_[11]);
+    return Transform(r);
+  }
   // Scale factors along x, y, z of the linear part (lengths of its columns).
   Vec3f axis_scales() const {
     return {length(Vec3f{m_[0], m_[4], m_[8]}), length(Vec3f{m_[1], m_[5], m_[9]}),

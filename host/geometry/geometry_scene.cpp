@@ -35,15 +35,14 @@ RTCGeometry make_triangle_geometry(RTCDevice device, const MeshData &mesh) {
 
 void set_vec(float out[3], const Vec3f &v) { v.store(out); }
 
-// A moving mesh: its object-space triangles in a scene of their own, instanced with one transform per
-// time step (Embree interpolates them at each ray's time, as MotionTransform::at does).
-RTCGeometry make_moving_instance(RTCDevice device, const MeshData &mesh, const MotionTransform &motion,
+// A moving shape: its object-space geometry (released here) in a scene of their own, instanced with one
+// transform per time step (Embree interpolates them at each ray's time, as MotionTransform::at does).
+RTCGeometry make_moving_instance(RTCDevice device, RTCGeometry own, const MotionTransform &motion,
                                  RTCScene &object_scene) {
   object_scene = rtcNewScene(device);
   rtcSetSceneFlags(object_scene, RTC_SCENE_FLAG_ROBUST);
-  RTCGeometry triangles = make_triangle_geometry(device, mesh);
-  rtcAttachGeometryByID(object_scene, triangles, 0);
-  rtcReleaseGeometry(triangles);
+  rtcAttachGeometryByID(object_scene, own, 0);
+  rtcReleaseGeometry(own);
   rtcCommitScene(object_scene);
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
   rtcSetGeometryInstancedScene(g, object_scene);
@@ -85,50 +84,46 @@ Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &d
     rec.center = sd.center;
     rec.normal = sd.normal;
     rec.radius = sd.radius;
-    RTCGeometry g;
-    if (sd.type == ShapeType::Sphere || sd.type == ShapeType::Disk) {
+    // The shape's own geometry and bounds: world space, or object space when it moves (its area then too).
+    const bool analytic = sd.type == ShapeType::Sphere || sd.type == ShapeType::Disk;
+    Vec3f lo(kInfinity), hi(-kInfinity);
+    if (analytic) {
       rec.area = sd.type == ShapeType::Sphere ? 4 * kPi * sqr(sd.radius) : kPi * sqr(sd.radius);
-      const Vec3f r(sd.radius);
-      gs->bounds_min_ = min(gs->bounds_min_, sd.center - r);
-      gs->bounds_max_ = max(gs->bounds_max_, sd.center + r);
-      gs->shapes_.push_back(rec);
-      g = make_analytic_geometry(gs->device_, gs->shapes_.back());
-    } else if (sd.motion) {
-      // Bounds: the object's box at every time step (its sweep between steps stays near them).
-      rec.mesh = &sd.mesh, rec.motion = sd.motion.get();
-      Vec3f lo(kInfinity), hi(-kInfinity);
-      for (const Vec3f &q : sd.mesh.positions) lo = min(lo, q), hi = max(hi, q);
-      for (const Decomposed &d : sd.motion->steps())
-        for (int c = 0; c < 8; ++c) {
-          const Vec3f corner{c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z};
-          const Vec3f w = d.matrix().point(corner);
-          gs->bounds_min_ = min(gs->bounds_min_, w), gs->bounds_max_ = max(gs->bounds_max_, w);
-        }
-      if (sd.motion->moves()) {
-        gs->moves_ = true;
-        gs->shutter_open_ = sd.motion->open(), gs->shutter_close_ = sd.motion->close();
-      }
-      gs->shapes_.push_back(rec);
-      RTCScene object_scene = nullptr;
-      g = make_moving_instance(gs->device_, sd.mesh, *sd.motion, object_scene);
-      gs->object_scenes_.push_back(object_scene);
+      lo = sd.center - Vec3f(sd.radius), hi = sd.center + Vec3f(sd.radius);
     } else {
       rec.mesh = &sd.mesh;
       const auto &p = sd.mesh.positions;
       for (size_t t = 0; t + 2 < sd.mesh.indices.size(); t += 3)
         rec.area +=
             triangle_area(p[sd.mesh.indices[t]], p[sd.mesh.indices[t + 1]], p[sd.mesh.indices[t + 2]]);
-      for (const Vec3f &q : p)
-        gs->bounds_min_ = min(gs->bounds_min_, q), gs->bounds_max_ = max(gs->bounds_max_, q);
+      for (const Vec3f &q : p) lo = min(lo, q), hi = max(hi, q);
+      for (const std::vector<Vec3f> &step : sd.mesh.position_steps)
+        for (const Vec3f &q : step) lo = min(lo, q), hi = max(hi, q);
       if (sd.mesh.deforms()) {
-        for (const std::vector<Vec3f> &step : sd.mesh.position_steps)
-          for (const Vec3f &q : step)
-            gs->bounds_min_ = min(gs->bounds_min_, q), gs->bounds_max_ = max(gs->bounds_max_, q);
         gs->moves_ = true;
         gs->shutter_open_ = sd.mesh.steps_open, gs->shutter_close_ = sd.mesh.steps_close;
       }
-      gs->shapes_.push_back(rec);
-      g = make_triangle_geometry(gs->device_, sd.mesh);
+    }
+    rec.motion = sd.motion.get();
+    gs->shapes_.push_back(rec);
+    RTCGeometry g = analytic ? make_analytic_geometry(gs->device_, gs->shapes_.back())
+                             : make_triangle_geometry(gs->device_, sd.mesh);
+    if (sd.motion) {
+      // The object's box at every time step (its sweep between steps stays near them).
+      for (const Decomposed &d : sd.motion->steps())
+        for (int c = 0; c < 8; ++c) {
+          const Vec3f w = d.matrix().point({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
+          gs->bounds_min_ = min(gs->bounds_min_, w), gs->bounds_max_ = max(gs->bounds_max_, w);
+        }
+      if (sd.motion->moves()) {
+        gs->moves_ = true;
+        gs->shutter_open_ = sd.motion->open(), gs->shutter_close_ = sd.motion->close();
+      }
+      RTCScene object_scene = nullptr;
+      g = make_moving_instance(gs->device_, g, *sd.motion, object_scene);
+      gs->object_scenes_.push_back(object_scene);
+    } else {
+      gs->bounds_min_ = min(gs->bounds_min_, lo), gs->bounds_max_ = max(gs->bounds_max_, hi);
     }
     rtcAttachGeometryByID(gs->scene_, g, uint32_t(gs->shapes_.size() - 1));
     rtcReleaseGeometry(g);
@@ -192,7 +187,14 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
                                 float time) const {
   std::memset(&out, 0, sizeof(out));
   const ShapeRecord &s = shapes_[hit.geom_id];
-  const Vec3f org = Vec3f::load(ray.org), dir = Vec3f::load(ray.dir);
+  // Analytic shapes are computed where they are defined: a moving one in object space at the ray's time
+  // (Embree's instance hit distance t holds there too), carried back to world space below.
+  const Vec3f world_dir = Vec3f::load(ray.dir);
+  Vec3f org = Vec3f::load(ray.org), dir = world_dir;
+  if (s.motion && (s.type == ShapeType::Sphere || s.type == ShapeType::Disk)) {
+    const Transform to_object = s.motion->at(time).inverse();
+    org = to_object.point(org), dir = to_object.vector(dir);
+  }
   Vec3f p, ng, ns, dpdu, dpdv;
   Vec2f uv;
   Vec3f error;  // bound on each coordinate's rounding error in p
@@ -299,7 +301,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
   out.uv[0] = uv.x, out.uv[1] = uv.y;
   out.material = s.material;
   out.light_id = s.light_id;
-  out.flags = (dot(dir, ng) < 0 ? NIMBUS_IX_FRONT_FACE : 0u) |
+  out.flags = (dot(world_dir, ng) < 0 ? NIMBUS_IX_FRONT_FACE : 0u) |
               (s.light_id != NIMBUS_NONE ? NIMBUS_IX_EMISSIVE : 0u) |
               (s.two_sided ? NIMBUS_IX_TWO_SIDED : 0u);
 }

@@ -26,7 +26,7 @@ struct ShapeRecord {
   float radius = 0;
   const MeshData *mesh = nullptr;  // triangle shapes: points into the SceneDesc (kept alive by the owner)
   float area = 0;
-  // A moving mesh (its triangles in object space, an Embree instance with time steps); null when static.
+  // A moving shape (its geometry in object space, an Embree instance with time steps); null when static.
   const MotionTransform *motion = nullptr;
 };
 

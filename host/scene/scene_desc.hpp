@@ -112,14 +112,15 @@ struct MeshData {
 
 struct ShapeDesc {
   ShapeType type = ShapeType::Sphere;
-  // Sphere and disk, world space after the transform (which must be a similarity for them).
+  // Sphere and disk, world space after the transform (which must be a similarity for them), or object
+  // space when `motion` moves them.
   Vec3f center{0, 0, 0};
   float radius = 1;
   Vec3f normal{0, 0, 1};  // disk
   // Rectangle, box and mesh: triangles already in world space (rectangle: 2, box: 12), or in object space
   // when `motion` moves them.
   MeshData mesh;
-  // A mesh that moves over the shutter: its transform at each time; null for a static shape.
+  // A shape that moves over the shutter: its transform at each time; null for a static shape.
   std::shared_ptr<const MotionTransform> motion;
   uint32_t material = 0;  // index into SceneDesc::materials
   // Area emission: radiance in W/(m^2 sr) per channel; black = not an emitter.

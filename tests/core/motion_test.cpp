@@ -86,6 +86,17 @@ TEST(MotionTransform, DecompositionRebuildsEveryAffineTransform) {
   }
 }
 
+TEST(MotionTransform, InverseUndoesEveryAffineTransform) {
+  const Transform m = Transform::translate({1e3f, -2, 3}) * Transform::rotate(37, {1, 2, 3}) *
+                      Transform::scale({-2, 0.5f, 3}) *
+                      Transform({1, 0.4f, 0, 5, 0, 1, 0.3f, 0, 0.2f, 0, 1, -1, 0, 0, 0, 1});
+  expect_near(m.inverse() * m, Transform{}, 1e-4f);  // float rounding of a translation of 1e3
+  expect_near(m * m.inverse(), Transform{}, 1e-3f);  // the translation column carries 1e3
+  const Vec3f p(0.3f, -7, 2);
+  const Vec3f back = m.inverse().point(m.point(p));
+  EXPECT_NEAR(length(back - p), 0.0f, 1e-3f);
+}
+
 TEST(MotionTransform, InterpolatesLikeEmbreesTimeSteps) {
   // Two keys over a shutter [0, 2]: a quarter turn about z, a move along x, a growth from 1 to 3.
   const Transform a = Transform::translate({0, 0, 0}), b = Transform::translate({4, 0, 0}) *
