@@ -28,6 +28,25 @@ void interaction(const nimbus_host_t *host, const nimbus_ray_t *ray, const nimbu
   world_of(host).geometry->interaction(*ray, *hit, *out);
 }
 
+void intersect_at(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_ray_t *rays,
+                  const float *times, nimbus_hit_t *hits, uint32_t n) {
+  count_rays(run_of(host), tc, n);
+  const GeometryScene &g = *world_of(host).geometry;
+  for (uint32_t i = 0; i < n; ++i) g.intersect(rays[i], hits[i], times[i]);
+}
+
+void occluded_at(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_ray_t *rays,
+                 const float *times, uint8_t *blocked, uint32_t n) {
+  count_rays(run_of(host), tc, n);
+  const GeometryScene &g = *world_of(host).geometry;
+  for (uint32_t i = 0; i < n; ++i) blocked[i] = g.occluded(rays[i], times[i]) ? 1 : 0;
+}
+
+void interaction_at(const nimbus_host_t *host, const nimbus_ray_t *ray, const nimbus_hit_t *hit, float time,
+                    nimbus_interaction_t *out) {
+  world_of(host).geometry->interaction(*ray, *hit, *out, time);
+}
+
 void spawn_ray(const nimbus_host_t *, const nimbus_interaction_t *ix, const float dir[3], float tfar,
                nimbus_ray_t *out) {
   const Vec3f d = Vec3f::load(dir);
@@ -105,6 +124,21 @@ float sample_film(const nimbus_host_t *host, uint32_t x, uint32_t y, const float
   return weight;
 }
 
+uint32_t shutter(const nimbus_host_t *host, float *open, float *close) {
+  const World &w = world_of(host);
+  if (open) *open = w.shutter.open();
+  if (close) *close = w.shutter.close();
+  if (w.shutter.instantaneous()) return 0;
+  return w.geometry->moves() ? NIMBUS_MOTION_GEOMETRY : 0u;
+}
+
+float sample_time(const nimbus_host_t *host, float u, float *pdf) {
+  const Shutter &s = world_of(host).shutter;
+  const float t = s.sample(u);
+  if (pdf) *pdf = s.instantaneous() ? 1.0f : s.pdf(t);
+  return t;
+}
+
 }  // namespace
 
 const nimbus_host_scene_query_v1_t kSceneQueryV1 = {sizeof(nimbus_host_scene_query_v1_t),
@@ -114,9 +148,12 @@ const nimbus_host_scene_query_v1_t kSceneQueryV1 = {sizeof(nimbus_host_scene_que
                                                     spawn_ray,
                                                     spawn_ray_to,
                                                     bounding_sphere,
-                                                    sharp_bounds};
+                                                    sharp_bounds,
+                                                    intersect_at,
+                                                    occluded_at,
+                                                    interaction_at};
 
-const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t), generate_ray, resolution, connect,
-                                           sample_film};
+const nimbus_host_camera_v1_t kCameraV1 = {
+    sizeof(nimbus_host_camera_v1_t), generate_ray, resolution, connect, sample_film, shutter, sample_time};
 
 }  // namespace nimbus

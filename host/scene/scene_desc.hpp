@@ -11,6 +11,7 @@
 
 #include <nimbus/cpp/math.hpp>
 #include "core/motion_transform.hpp"
+#include "core/shutter.hpp"
 #include "core/transform.hpp"
 #include "scene/pixel_filter_type.hpp"
 #include "scene/source_log.hpp"
@@ -59,6 +60,7 @@ struct CameraDesc {
   float fov_degrees = 45;    // horizontal field of view
   float aperture = 0;        // thin-lens radius; 0 = pinhole
   float focus_distance = 0;  // 0 = distance to look_at
+  Shutter shutter;           // instantaneous unless something moves
 };
 
 enum class MaterialType { Diffuse, Conductor, Dielectric };

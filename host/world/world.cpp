@@ -16,6 +16,7 @@ Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc, FilterType 
   world->textures = std::move(textures.value());
   world->sharp_objects = find_sharp_objects(desc, *world->geometry, world->bsdfs);
   world->camera = Camera(desc.camera, desc.render.width, desc.render.height);
+  world->shutter = desc.camera.shutter;
   world->filter = PixelFilter(filter);
   return world;
 }

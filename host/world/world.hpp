@@ -24,6 +24,7 @@ struct World {
   std::vector<Bsdf> bsdfs;                      // one per scene material
   std::unique_ptr<TexturedMaterials> textures;  // null unless a material reads a texture
   Camera camera;
+  Shutter shutter;  // the camera's (scene time)
   PixelFilter filter;
   std::vector<SharpObject> sharp_objects;  // objects that can form caustics (sharp_objects.hpp)
 

@@ -7,9 +7,12 @@
 #include <random>
 #include <tuple>
 
+#include "abi/host_services.hpp"
+#include "abi/run_state.hpp"
 #include "geometry/geometry_scene.hpp"
 #include "scene/mesh_builders.hpp"
 #include "scene/scene_desc.hpp"
+#include "world/world.hpp"
 
 namespace nimbus {
 namespace {
@@ -203,6 +206,54 @@ TEST(MovingGeometry, DeformingMeshIsWhereItsStepsPutItAtTheRaysTime) {
     EXPECT_NEAR(dot(Vec3f::load(ix.ns), ns), 1.0f, 1e-5f) << "time " << time;
     EXPECT_NEAR(ix.ng[2], 1.0f, 1e-6f);
   }
+}
+
+// Through the C ABI (SDK 1.7): the scene query takes each ray's time, and the camera reports the
+// shutter, what moves, and draws times from the shutter's curve.
+TEST(MovingGeometry, SceneQueryAndCameraServicesCarryTime) {
+  SceneDesc d = moving_cube({{0.0f, Transform{}}, {1.0f, Transform::translate({2, 0, 0})}});
+  d.camera.shutter = Shutter(0.0f, 1.0f);
+  auto world = World::build(d, FilterType::Box);
+  ASSERT_TRUE(world.ok()) << world.error().message;
+  RunState run(4, 4, 1, 1);
+  HostServices services(world->get(), &run);
+  const nimbus_host_t *h = services.host();
+  const auto *query =
+      static_cast<const nimbus_host_scene_query_v1_t *>(h->get_service(h, NIMBUS_SERVICE_SCENE_QUERY, 1));
+  const auto *camera =
+      static_cast<const nimbus_host_camera_v1_t *>(h->get_service(h, NIMBUS_SERVICE_CAMERA, 1));
+  ASSERT_TRUE(NIMBUS_HAS_MEMBER(query, nimbus_host_scene_query_v1_t, interaction_at));
+  ASSERT_TRUE(NIMBUS_HAS_MEMBER(camera, nimbus_host_camera_v1_t, sample_time));
+  const nimbus_ray_t rays[2] = {ray_from({2, -5, 0}, {0, 1, 0}), ray_from({2, -5, 0}, {0, 1, 0})};
+  const float times[2] = {0.5f, 0.9f};
+  nimbus_hit_t hits[2];
+  query->intersect_at(h, nullptr, rays, times, hits, 2);
+  EXPECT_EQ(hits[0].geom_id, NIMBUS_NONE);
+  ASSERT_EQ(hits[1].geom_id, 0u);
+  uint8_t blocked[2];
+  query->occluded_at(h, nullptr, rays, times, blocked, 2);
+  EXPECT_EQ(blocked[0], 0);
+  EXPECT_EQ(blocked[1], 1);
+  nimbus_interaction_t ix{};
+  query->interaction_at(h, &rays[1], &hits[1], 0.9f, &ix);
+  EXPECT_NEAR(ix.p[1], -0.5f, 1e-5f);
+  EXPECT_NEAR(ix.ng[1], -1.0f, 1e-5f);
+  float open = -1, close = -1, pdf = 0;
+  EXPECT_EQ(camera->shutter(h, &open, &close), NIMBUS_MOTION_GEOMETRY);
+  EXPECT_EQ(open, 0.0f);
+  EXPECT_EQ(close, 1.0f);
+  const float t = camera->sample_time(h, 0.25f, &pdf);
+  EXPECT_NEAR(t, 0.25f, 1e-6f);
+  EXPECT_NEAR(pdf, 1.0f, 1e-6f);
+  // A shutter that opens and closes at once: nothing moves for the camera, times are its open time.
+  d.camera.shutter = Shutter(0.5f, 0.5f);
+  auto still = World::build(d, FilterType::Box);
+  ASSERT_TRUE(still.ok());
+  HostServices still_services(still->get(), &run);
+  const nimbus_host_t *hs = still_services.host();
+  EXPECT_EQ(camera->shutter(hs, &open, &close), 0u);
+  EXPECT_EQ(camera->sample_time(hs, 0.7f, &pdf), 0.5f);
+  EXPECT_EQ(pdf, 1.0f);
 }
 
 }  // namespace

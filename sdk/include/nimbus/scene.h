@@ -79,6 +79,20 @@ typedef struct nimbus_host_scene_query_v1 {
    * NULL when capacity is 0) and returns count. Constant between prepare and end_render. */
   uint32_t (*sharp_bounds)(const nimbus_host_t *host, float alpha_max, nimbus_object_bounds_t *out,
                            uint32_t capacity);
+  /* Since 1.7 (absent from older hosts' tables: check NIMBUS_HAS_MEMBER before calling).
+   * [render-thread] intersect at scene times: ray i meets the scene as it is at times[i] (moving objects
+   * where they are then; a time outside the shutter sees the shutter's nearer end). rays, times
+   * borrowed; hits out (n records). The same hits as intersect when nothing in the scene moves. */
+  void (*intersect_at)(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx, const nimbus_ray_t *rays,
+                       const float *times, nimbus_hit_t *hits, uint32_t n);
+  /* Since 1.7. [render-thread] occluded at scene times, as intersect_at. rays, times borrowed; blocked
+   * out. */
+  void (*occluded_at)(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx, const nimbus_ray_t *rays,
+                      const float *times, uint8_t *blocked, uint32_t n);
+  /* Since 1.7. [render-thread] Surface details of a hit that intersect_at found at `time`. ray, hit
+   * borrowed; out is caller storage. */
+  void (*interaction_at)(const nimbus_host_t *host, const nimbus_ray_t *ray, const nimbus_hit_t *hit,
+                         float time, nimbus_interaction_t *out);
 } nimbus_host_scene_query_v1_t;
 
 /* ---- nimbus.host.camera@1 ---------------------------------------------------------------------- */
@@ -111,7 +125,21 @@ typedef struct nimbus_host_camera_v1 {
    * sample's radiance by it). The position always lies in pixel (x, y)'s filter support, and the
    * sample is accumulated into pixel (x, y). */
   float (*sample_film)(const nimbus_host_t *host, uint32_t x, uint32_t y, const float u[2], float film[2]);
+  /* Since 1.7 (absent from older hosts' tables: check NIMBUS_HAS_MEMBER before calling).
+   * [any-thread] The shutter in scene time: open and close (out). Returns what moves while it is open
+   * (NIMBUS_MOTION_* bits); 0 means nothing does, and a path needs no time. */
+  uint32_t (*shutter)(const nimbus_host_t *host, float *open, float *close);
+  /* Since 1.7. [any-thread] A scene time drawn with u in [0,1) from the shutter's curve (the film's
+   * relative exposure over the shutter); *pdf (out) its density per unit time. Camera paths draw one
+   * each; a photon path draws its own and carries 1 / pdf in its power. The shutter's open time (pdf 1)
+   * when it opens and closes at once. */
+  float (*sample_time)(const nimbus_host_t *host, float u, float *pdf);
 } nimbus_host_camera_v1_t;
+
+/* Since 1.7: what moves while the shutter is open (nimbus_host_camera_v1_t.shutter). */
+#define NIMBUS_MOTION_CAMERA 1u   /* the camera: camera paths need a time, photons do not */
+#define NIMBUS_MOTION_GEOMETRY 2u /* objects or their vertices */
+#define NIMBUS_MOTION_LIGHTS 4u   /* lights */
 
 #ifdef __cplusplus
 }
