@@ -8,7 +8,8 @@ namespace nimbus::scene_yaml {
 CameraDesc read_camera(const YamlValue &section) {
   CameraDesc c;
   if (section.is_null()) return c;  // `camera:` with nothing under it: all defaults
-  const YamlMap m = section.map({"type", "position", "look_at", "up", "fov", "aperture", "focus_distance"});
+  const YamlMap m =
+      section.map({"type", "position", "look_at", "up", "fov", "aperture", "focus_distance", "shutter"});
 
   if (auto v = m.get("type")) {
     const std::string type = v->string();
@@ -21,6 +22,7 @@ CameraDesc read_camera(const YamlValue &section) {
   if (auto v = m.get("fov")) c.fov_degrees = v->real(Range::open(0, 180));
   if (auto v = m.get("aperture")) c.aperture = v->real(Range::at_least(0));
   if (auto v = m.get("focus_distance")) c.focus_distance = v->real(Range::greater_than(0));
+  if (auto v = m.get("shutter")) c.shutter = read_shutter(*v);
 
   // The camera frame is built from (look_at - position) and up; reject inputs that leave it undefined.
   // Errors point at the key that was written, or at the section when both came from defaults.

@@ -16,7 +16,8 @@ const char *const kShapes = "sphere, rectangle, box, disk, mesh, instance, subdi
 
 // The keys every shape accepts plus those specific to it.
 std::vector<std::string_view> keys_with(std::initializer_list<std::string_view> specific) {
-  std::vector<std::string_view> keys{"shape", "material", "transform", "emission", "two_sided", "group"};
+  std::vector<std::string_view> keys{"shape",    "material",  "transform", "motion",
+                                     "emission", "two_sided", "group"};
   keys.insert(keys.end(), specific);
   return keys;
 }
@@ -85,6 +86,12 @@ ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
   if (auto v = m.get("two_sided")) s.two_sided = v->boolean();
   if (auto v = m.get("group")) s.group = v->string();
 
+  // `motion:` keys the transform in time (object space stays object space: the instance moves it);
+  // `transform:` is baked into world space here.
+  const std::optional<YamlValue> motion_value = m.get("motion");
+  if (motion_value && m.has("transform")) m.key("transform").fail("cannot be combined with 'motion'");
+  if (motion_value && s.type == ShapeType::Mesh && shape == "subdivision")
+    m.key("motion").fail("a subdivision surface cannot move yet (its tessellation follows the camera)");
   const std::optional<YamlValue> transform_value = m.get("transform");
   const Transform transform = transform_value ? read_transform(*transform_value) : Transform();
 
@@ -100,6 +107,15 @@ ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
   else
     s.material = find_material(m.require("material"), context.materials);
 
+  if (motion_value) {
+    const bool analytic = s.type == ShapeType::Sphere || s.type == ShapeType::Disk;
+    const auto keys =
+        read_motion(*motion_value, context.camera.shutter, [&](const Transform &t, const YamlValue &at) {
+          if (analytic) uniform_scale(t, at, shape);
+        });
+    s.motion = std::make_shared<const MotionTransform>(keys, context.camera.shutter.open(),
+                                                       context.camera.shutter.close());
+  }
   switch (s.type) {
     case ShapeType::Sphere:
     case ShapeType::Disk: {

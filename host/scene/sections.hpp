@@ -2,6 +2,7 @@
 // (see yaml_value.hpp); parse_scene_* turns that into an Error value.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -36,6 +37,15 @@ EnvironmentDesc read_environment(const YamlValue &section, const std::vector<Lig
 
 // `transform:` of an object: {translate, rotate, scale} or {matrix}.      // transform_section.cpp
 Transform read_transform(const YamlValue &value);
+// The same from a map whose keys the caller checked (a motion key adds `time`).
+Transform read_transform(const YamlMap &map);
+// `camera.shutter:` {open, close, curve}.                                 // motion_section.cpp
+Shutter read_shutter(const YamlValue &value);
+// `motion:` of an object: keys [{time, translate, rotate, scale} or {time, matrix}] in time order within
+// the shutter. `check` is called on each key's transform and the value it came from.  // motion_section.cpp
+std::vector<MotionTransform::Key> read_motion(
+    const YamlValue &value, const Shutter &shutter,
+    const std::function<void(const Transform &, const YamlValue &)> &check);
 
 // The triangles of a `shape: mesh` object or a `meshes:` entry in its own coordinates: inline arrays or an
 // OBJ or glTF file (read once per scene through `library`).                  // mesh_section.cpp

@@ -68,7 +68,10 @@ Transform read_matrix(const YamlValue &v) {
 }  // namespace
 
 Transform read_transform(const YamlValue &value) {
-  const YamlMap m = value.map({"translate", "rotate", "scale", "matrix"});
+  return read_transform(value.map({"translate", "rotate", "scale", "matrix"}));
+}
+
+Transform read_transform(const YamlMap &m) {
   if (auto matrix = m.get("matrix")) {
     for (const char *other : {"translate", "rotate", "scale"})
       if (m.has(other)) m.key(other).fail("cannot be combined with 'matrix'");

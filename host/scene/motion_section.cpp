@@ -1,0 +1,70 @@
+// `camera.shutter:` and an object's `motion:` — the time over which the film is exposed, and transforms
+// keyed in time within it (core/shutter.hpp, core/motion_transform.hpp).
+#include <cmath>
+#include <string>
+
+#include "scene/sections.hpp"
+
+namespace nimbus::scene_yaml {
+
+Shutter read_shutter(const YamlValue &value) {
+  const YamlMap m = value.map({"open", "close", "curve"});
+  const float open = m.has("open") ? m.get("open")->real() : 0.0f;
+  const YamlValue close_value = m.require("close");
+  const float close = close_value.real();
+  if (!(close >= open))
+    close_value.fail("the shutter closes (" + format_number(close) + ") before it opens (" +
+                     format_number(open) + ")");
+  std::vector<std::array<float, 2>> curve;
+  if (auto v = m.get("curve")) {
+    // Knots [x, exposure] over the shutter normalised to [0, 1]: x from 0 to 1, never decreasing.
+    double area = 0;
+    for (const YamlValue &knot : v->sequence()) {
+      const std::vector<YamlValue> k = knot.sequence_of(2, "[x, exposure] with x in [0, 1]");
+      const float x = k[0].real(Range::closed(0, 1)), y = k[1].real(Range::at_least(0));
+      if (curve.empty() && x != 0) k[0].fail("the curve must start at x = 0");
+      if (!curve.empty() && x < curve.back()[0]) k[0].fail("curve knots must not go back in x");
+      if (!curve.empty()) area += 0.5 * (double(y) + curve.back()[1]) * (double(x) - curve.back()[0]);
+      curve.push_back({x, y});
+    }
+    if (curve.size() < 2 || curve.back()[0] != 1) v->fail("the curve must run from x = 0 to x = 1");
+    if (!(area > 0)) v->fail("the curve exposes nothing (its area is 0)");
+  }
+  return Shutter(open, close, std::move(curve));
+}
+
+std::vector<MotionTransform::Key> read_motion(
+    const YamlValue &value, const Shutter &shutter,
+    const std::function<void(const Transform &, const YamlValue &)> &check) {
+  const std::vector<YamlValue> items = value.sequence();
+  if (items.empty()) value.fail("expected at least one key {time, translate, rotate, scale}");
+  std::vector<MotionTransform::Key> keys;
+  std::string previous;  // the previous key's time as written
+  for (const YamlValue &item : items) {
+    const YamlMap key = item.map({"time", "translate", "rotate", "scale", "matrix"});
+    const YamlValue time_value = key.require("time");
+    const float time = time_value.real();
+    if (items.size() > 1 && !(time >= shutter.open() && time <= shutter.close()))
+      time_value.fail("time " + time_value.shown() + " lies outside the shutter [" +
+                      format_number(shutter.open()) + ", " + format_number(shutter.close()) +
+                      "] (camera.shutter)");
+    if (!keys.empty() && !(time > keys.back().time))
+      time_value.fail("keys out of order: time " + time_value.shown() + " follows " + previous);
+    previous = time_value.shown();
+    const Transform t = read_transform(key);
+    check(t, item);
+    if (!keys.empty()) {
+      // Embree turns between time steps along the shorter arc; half a turn between two keys is ambiguous.
+      const float c =
+          std::abs(Decomposed::of(keys.back().transform).rotation.dot(Decomposed::of(t).rotation));
+      if (c < 1e-3f)
+        item.fail(
+            "the rotation turns half a turn (180 degrees) since the previous key, which has no one way "
+            "to turn: add a key between them");
+    }
+    keys.push_back({time, t});
+  }
+  return keys;
+}
+
+}  // namespace nimbus::scene_yaml
