@@ -90,6 +90,8 @@ ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
   // `transform:` is baked into world space here.
   const std::optional<YamlValue> motion_value = m.get("motion");
   if (motion_value && m.has("transform")) m.key("transform").fail("cannot be combined with 'motion'");
+  if (motion_value && m.has("emission"))
+    m.key("motion").fail("an emitting object cannot move yet (its light would stay where the shutter opens)");
   if (motion_value && s.type == ShapeType::Mesh && shape == "subdivision")
     m.key("motion").fail("a subdivision surface cannot move yet (its tessellation follows the camera)");
   const std::optional<YamlValue> transform_value = m.get("transform");

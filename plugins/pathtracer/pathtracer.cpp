@@ -10,7 +10,8 @@ namespace nimbus::pt {
 namespace {
 
 const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, nullptr};
-const char *const kFeatures[] = {"progressive", "lightmix", nullptr};
+// motion-blur: the camera-path layer gives every path a time when something moves (SDK 1.7).
+const char *const kFeatures[] = {"progressive", "lightmix", "motion-blur", nullptr};
 
 class PathTracer final : public sdk::CameraPathIntegrator<PathTracer> {
  public:
