@@ -99,7 +99,7 @@ Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &d
       for (const Vec3f &q : p) lo = min(lo, q), hi = max(hi, q);
       for (const std::vector<Vec3f> &step : sd.mesh.position_steps)
         for (const Vec3f &q : step) lo = min(lo, q), hi = max(hi, q);
-      if (sd.mesh.deforms()) {
+      if (sd.mesh.deforms() && sd.mesh.steps_close > sd.mesh.steps_open) {  // else every ray sees step 0
         gs->moves_ = true;
         gs->shutter_open_ = sd.mesh.steps_open, gs->shutter_close_ = sd.mesh.steps_close;
       }
