@@ -49,9 +49,11 @@ Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &j
   // A scene that moves renders only with an integrator that gives its paths times (SDK 1.7): any other
   // would render every object where it is when the shutter opens.
   for (const ShapeDesc &shape : job.scene->shapes)
-    if (shape.motion && shape.motion->moves() && !p.integrator.record().has_feature("motion-blur"))
+    if (((shape.motion && shape.motion->moves()) || shape.mesh.deforms()) &&
+        !p.integrator.record().has_feature("motion-blur"))
       return Error{
-          shape.where.text() + ": motion: integrator '" + p.integrator.id() +
+          shape.where.text() + ": " + (shape.motion ? "motion" : "deform") + ": integrator '" +
+          p.integrator.id() +
           "' does not render motion blur (no \"motion-blur\" feature); remove the object's motion or "
           "choose an integrator that has it"};
   auto sampler = registry.instantiate(job.light_sampler_for(light_count), NIMBUS_KIND_LIGHT_SAMPLER, host);

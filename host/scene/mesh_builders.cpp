@@ -49,6 +49,10 @@ MeshData box_mesh(const Vec3f &size) {
 void transform_mesh(MeshData &mesh, const Transform &transform) {
   for (Vec3f &p : mesh.positions) p = transform.point(p);
   for (Vec3f &n : mesh.normals) n = normalize(transform.normal(n));
+  for (std::vector<Vec3f> &step : mesh.position_steps)
+    for (Vec3f &p : step) p = transform.point(p);
+  for (std::vector<Vec3f> &step : mesh.normal_steps)
+    for (Vec3f &n : step) n = normalize(transform.normal(n));
   if (transform.determinant3() < 0)
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
       std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);

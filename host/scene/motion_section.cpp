@@ -67,4 +67,42 @@ std::vector<MotionTransform::Key> read_motion(
   return keys;
 }
 
+void read_deformation(const YamlValue &value, MeshData &mesh, MeshLibrary &library, const Shutter &shutter) {
+  const std::vector<YamlValue> items = value.sequence();
+  if (items.size() < 2)
+    value.fail("expected at least two shapes of the mesh, evenly spaced over the shutter");
+  if (shutter.instantaneous())
+    value.fail(
+        "the shapes are spread over camera.shutter, which opens and closes at once: give it a close time");
+  bool normals = !mesh.normals.empty();
+  std::vector<std::vector<Vec3f>> positions, normal_steps;
+  for (const YamlValue &item : items) {
+    std::vector<Vec3f> p, n;
+    if (item.is_scalar()) {  // a file of the same mesh in another shape
+      const std::shared_ptr<const LoadedMesh> loaded = library.load(item);
+      if (loaded->mesh.indices != mesh.indices)
+        item.fail("its triangles are not the mesh's (" + std::to_string(loaded->mesh.indices.size() / 3) +
+                  " triangles against " + std::to_string(mesh.indices.size() / 3) + ", or other vertices)");
+      p = loaded->mesh.positions, n = loaded->mesh.normals;
+    } else {
+      for (const YamlValue &v : item.sequence()) p.push_back(v.vec3());
+    }
+    if (p.size() != mesh.positions.size())
+      item.fail("has " + std::to_string(p.size()) + " vertices but the mesh has " +
+                std::to_string(mesh.positions.size()));
+    normals = normals && n.size() == p.size();
+    positions.push_back(std::move(p)), normal_steps.push_back(std::move(n));
+  }
+  mesh.positions = positions.front();
+  mesh.position_steps = std::move(positions);
+  // Normals follow the shape only when every step has them; otherwise the mesh shades flat.
+  if (normals) {
+    mesh.normals = normal_steps.front();
+    mesh.normal_steps = std::move(normal_steps);
+  } else {
+    mesh.normals.clear();
+  }
+  mesh.steps_open = shutter.open(), mesh.steps_close = shutter.close();
+}
+
 }  // namespace nimbus::scene_yaml

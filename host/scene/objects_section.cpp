@@ -69,7 +69,7 @@ ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
     m.check_keys(keys_with({"radius"}), "a disk");
   } else if (shape == "mesh") {
     s.type = ShapeType::Mesh;
-    m.check_keys(keys_with({"file", "positions", "indices", "normals", "uvs"}), "a mesh");
+    m.check_keys(keys_with({"file", "positions", "indices", "normals", "uvs", "deform"}), "a mesh");
   } else if (shape == "instance") {
     s.type = ShapeType::Mesh;
     m.check_keys(keys_with({"mesh"}), "an instance");
@@ -143,6 +143,11 @@ ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
     case ShapeType::Mesh:
       s.mesh = loaded ? loaded->mesh : read_subdivision(m, transform, context.camera, context.render);
       break;
+  }
+  if (auto deform = m.get("deform")) {
+    if (motion_value) deform->fail("cannot be combined with 'motion'");
+    if (m.has("emission")) deform->fail("an emitting mesh cannot deform yet");
+    read_deformation(*deform, s.mesh, context.meshes, context.camera.shutter);
   }
 
   if (!s.mesh.positions.empty()) {

@@ -41,6 +41,9 @@ Transform read_transform(const YamlValue &value);
 Transform read_transform(const YamlMap &map);
 // `camera.shutter:` {open, close, curve}.                                 // motion_section.cpp
 Shutter read_shutter(const YamlValue &value);
+// `deform:` of a mesh: its shapes (files of the same triangles, or inline position lists) at evenly spaced
+// times over the shutter, into mesh.position_steps (and normal_steps).  // motion_section.cpp
+void read_deformation(const YamlValue &value, MeshData &mesh, MeshLibrary &library, const Shutter &shutter);
 // `motion:` of an object: keys [{time, translate, rotate, scale} or {time, matrix}] in time order within
 // the shutter. `check` is called on each key's transform and the value it came from.  // motion_section.cpp
 std::vector<MotionTransform::Key> read_motion(

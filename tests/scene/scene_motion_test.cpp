@@ -71,5 +71,29 @@ TEST(SceneMotion, KeyMistakesAreNamedWhereTheyAre) {
                        8, 27, "objects[0].motion[1]", "allows only rotation, translation and uniform scale"));
 }
 
+TEST(SceneMotion, DeformationStepsAndTheirMistakes) {
+  const std::string tri =
+      "  - { shape: mesh, material: white, positions: [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "
+      "indices: [0, 1, 2], ";
+  const SceneDesc scene =
+      parse_ok(kHead + "objects:\n" + tri +
+               "deform: [[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 1], [1, 0, 1], [0, 1, 1]]],"
+               " transform: { translate: [5, 0, 0] } }\n");
+  const MeshData &m = scene.shapes.at(0).mesh;
+  ASSERT_TRUE(m.deforms());
+  EXPECT_EQ(m.position_steps.size(), 2u);
+  EXPECT_NEAR(m.position_steps[1][2].x, 5.0f, 1e-6f) << "the transform moves every step";
+  EXPECT_NEAR(m.position_steps[1][2].z, 1.0f, 1e-6f);
+  EXPECT_EQ(m.steps_open, 0.0f);
+  EXPECT_EQ(m.steps_close, 1.0f);
+  EXPECT_TRUE(
+      fails_at(kHead + "objects:\n" + tri + "deform: [[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 1]]] }\n", 5,
+               147, "objects[0].deform[1]", "has 1 vertices but the mesh has 3"));
+  EXPECT_TRUE(
+      fails_at("materials:\n  white: { type: diffuse }\nobjects:\n" + tri +
+                   "deform: [[[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 0, 1], [1, 0, 1], [0, 1, 1]]] }\n",
+               4, 111, "objects[0].deform", "give it a close time"));
+}
+
 }  // namespace
 }  // namespace nimbus::test
