@@ -9,6 +9,7 @@
 #include <nimbus/nimbus.hpp>
 
 #include <nimbus/cpp/math.hpp>
+#include <nimbus/cpp/path_services.hpp>
 
 namespace nimbus::lt {
 namespace {
@@ -16,7 +17,9 @@ namespace {
 const char *const kRequired[] = {
     "nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1",  "nimbus.host.lights@1",
     "nimbus.host.film@1",        "nimbus.host.rng@1",    "nimbus.host.tasks@1", nullptr};
-const char *const kFeatures[] = {"progressive", "lightmix", nullptr};
+// motion-blur: every light path draws a time when something moves (SDK 1.7; the camera and lights hold
+// still).
+const char *const kFeatures[] = {"progressive", "lightmix", "motion-blur", nullptr};
 
 constexpr uint64_t kStreamLightPath = 1;  // distinct from the camera streams of other integrators
 constexpr uint64_t kPathsPerTask = 1024;
@@ -53,6 +56,7 @@ class LightTracer final : public sdk::Integrator {
       if (lights_->info(host().get(), i, &info) != NIMBUS_OK) return NIMBUS_E_INTERNAL;
       light_group_.push_back(info.group);
     }
+    timed_ = {scene_, sdk::TimedScene::needed(host().get(), scene_, camera_)};
     // Beauty takes splats: register it with the splat flag (it is always active).
     film_->register_element(host().get(), "beauty", 3, NIMBUS_ELEMENT_SPLAT);
     return NIMBUS_OK;
@@ -93,7 +97,7 @@ class LightTracer final : public sdk::Integrator {
 
   // Connects point p (with the given outgoing radiance towards the lens per unit W) to the camera.
   bool camera_visible(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t *ix, const Vec3f &p,
-                      const float lens_point[3]) const {
+                      const float lens_point[3], float time) const {
     nimbus_ray_t ray;
     if (ix) {
       scene_->spawn_ray_to(host().get(), ix, lens_point, &ray);
@@ -106,9 +110,7 @@ class LightTracer final : public sdk::Integrator {
       ray.tfar = dist * (1 - 1e-4f);
       ray.mask = ~0u, ray.flags = 0;
     }
-    uint8_t blocked = 0;
-    scene_->occluded(host().get(), &ctx, &ray, &blocked, 1);
-    return !blocked;
+    return !timed_.occluded(host().get(), ctx, ray, time);
   }
 
   void trace_light_path(const nimbus_thread_ctx_t &ctx, uint64_t path) const {
@@ -119,6 +121,9 @@ class LightTracer final : public sdk::Integrator {
     const uint32_t light = sampler_iface_->pick_emitter(sampler_, next(rng), &pmf);
     if (light == NIMBUS_NONE || !(pmf > 0)) return;
     const float ue[4] = {next(rng), next(rng), next(rng), next(rng)};
+    // A time from the shutter's curve when something moves (the film integrates over it: weight 1);
+    // no number is drawn otherwise, so a static scene's paths are unchanged.
+    const float time = timed_.timed ? camera_->sample_time(h, next(rng), nullptr) : 0.0f;
     nimbus_light_emission_t em;
     lights_->sample_emission(h, light, ue, &em);
     if (!(em.pdf_pos > 0) || !(em.pdf_dir > 0)) return;
@@ -139,7 +144,7 @@ class LightTracer final : public sdk::Integrator {
       if (we > 0 && cos_l > 0) {
         // Offset the origin off the emitter, on the camera's side.
         const Vec3f o = org + n * (dot(n, to_cam) >= 0 ? relative_offset(org) : -relative_offset(org));
-        if (camera_visible(ctx, nullptr, o, lens))
+        if (camera_visible(ctx, nullptr, o, lens, time))
           splat(ctx, raster, Le * (cos_l * we * inv_paths / (pmf * em.pdf_pos)), light);
       }
     }
@@ -158,10 +163,10 @@ class LightTracer final : public sdk::Integrator {
     // Vertex i (1-based) closes a path of i + 1 segments with the camera connection.
     for (uint32_t i = 1; i + 1 <= max_depth_; ++i) {
       nimbus_hit_t hit;
-      scene_->intersect(h, &ctx, &ray, &hit, 1);
+      timed_.intersect(h, ctx, ray, time, hit);
       if (hit.geom_id == NIMBUS_NONE) return;
       nimbus_interaction_t ix;
-      scene_->interaction(h, &ray, &hit, &ix);
+      timed_.interaction(h, ray, hit, time, ix);
       const Vec3f wo = -Vec3f::load(ray.dir);
       float wo_arr[3];
       wo.store(wo_arr);
@@ -178,7 +183,7 @@ class LightTracer final : public sdk::Integrator {
           wc.store(wc_arr);
           bsdf_->eval(h, &ix, wo_arr, wc_arr, NIMBUS_MODE_IMPORTANCE, f, nullptr, nullptr);
           const Rgb c = beta * Rgb::load(f) * (std::abs(dot(ns, wc)) * we * inv_paths);
-          if (!is_black(c) && camera_visible(ctx, &ix, p, lens)) splat(ctx, raster, c, light);
+          if (!is_black(c) && camera_visible(ctx, &ix, p, lens, time)) splat(ctx, raster, c, light);
         }
       } else {
         next(rng), next(rng);  // keep the stream layout independent of the material
@@ -203,6 +208,7 @@ class LightTracer final : public sdk::Integrator {
   }
 
   const nimbus_host_scene_query_v1_t *scene_ = nullptr;
+  sdk::TimedScene timed_;  // the scene at a light path's time when something moves
   const nimbus_host_camera_v1_t *camera_ = nullptr;
   const nimbus_host_bsdf_v1_t *bsdf_ = nullptr;
   const nimbus_host_lights_v1_t *lights_ = nullptr;

@@ -91,7 +91,7 @@ TEST(IntegratorOptions, MovingSceneNeedsAnIntegratorThatRendersMotionBlur) {
   TestDir dir;
   const std::string path = dir.file("moving.yaml");
   write_bytes(path,
-              "render: { resolution: [16, 16], integrator: lt }\n"
+              "render: { resolution: [16, 16], integrator: caustics }\n"
               "camera: { position: [0, -5, 1], look_at: [0, 0, 0.5], shutter: { open: 0, close: 1 } }\n"
               "materials: { white: { type: diffuse } }\n"
               "objects:\n"
@@ -103,7 +103,7 @@ TEST(IntegratorOptions, MovingSceneNeedsAnIntegratorThatRendersMotionBlur) {
               "lights: [{ type: point, position: [0, 0, 4], power: 100 }]\n");
   const ProcessResult r = run_nimbus({"render", path, "-q", "-o", dir.file("x.exr")}, dir);
   EXPECT_TRUE(exited_with(r, 1)) << r.describe();
-  EXPECT_TRUE(contains(r.err, path + ":6:5: motion: integrator 'nimbus.lt' does not render motion blur"))
+  EXPECT_TRUE(contains(r.err, path + ":6:5: motion: integrator 'nimbus.caustics' does not render motion blur"))
       << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("x.exr")));
 }

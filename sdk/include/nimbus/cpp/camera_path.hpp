@@ -122,9 +122,7 @@ class CameraPathIntegrator : public Integrator {
     elements_.register_all(svc_.film, h, self().diverted_element());
     // Motion blur (SDK 1.7): a time per camera path when something moves while the shutter is open;
     // otherwise no time is drawn and the path's random numbers are those of a static scene.
-    timed_ = NIMBUS_HAS_MEMBER(svc_.camera, nimbus_host_camera_v1_t, sample_time) &&
-             NIMBUS_HAS_MEMBER(svc_.scene, nimbus_host_scene_query_v1_t, interaction_at) &&
-             svc_.camera->shutter(h, nullptr, nullptr) != 0;
+    scene_ = {svc_.scene, TimedScene::needed(h, svc_.scene, svc_.camera)};
     return NIMBUS_OK;
   }
 
@@ -175,7 +173,7 @@ class CameraPathIntegrator : public Integrator {
     nimbus_camera_sample_t cs{{0, 0}, {next_uniform(rng), next_uniform(rng)}};
     const float filter_weight = svc_.camera->sample_film(h, x, y, uf, cs.film);
     // Drawn from the shutter's curve, which the film integrates over: the weight stays 1.
-    const float time = timed_ ? svc_.camera->sample_time(h, next_uniform(rng), nullptr) : 0.0f;
+    const float time = scene_.timed ? svc_.camera->sample_time(h, next_uniform(rng), nullptr) : 0.0f;
     nimbus_ray_t ray;
     const float cam_weight = svc_.camera->generate_ray(h, &cs, &ray) * filter_weight;
     if (cam_weight == 0) return;
@@ -189,14 +187,14 @@ class CameraPathIntegrator : public Integrator {
     // `segments` counts the segments of the path up to the vertex `ray` reaches.
     for (uint32_t segments = 1;; ++segments) {
       nimbus_hit_t hit;
-      intersect(ctx, ray, time, hit);
+      scene_.intersect(h, ctx, ray, time, hit);
       const Vec3f dir = Vec3f::load(ray.dir);
       if (hit.geom_id == NIMBUS_NONE) {
         add_infinite(rec, beta, prev, dir, specular, prev_pdf, segments, path);
         break;
       }
       nimbus_interaction_t ix;
-      interaction(ray, hit, time, ix);
+      scene_.interaction(h, ray, hit, time, ix);
       const Vec3f wo = -dir;
       if (segments == 1) {
         rec.normal = Vec3f::load(ix.ns);
@@ -319,12 +317,7 @@ class CameraPathIntegrator : public Integrator {
     nimbus_ray_t shadow;
     svc_.scene->spawn_ray_to(h, &ix, ls.p, &shadow);
     if (ls.flags & NIMBUS_LIGHT_INFINITE) shadow.tfar = kInfinity;
-    uint8_t blocked = 0;
-    if (timed_)
-      svc_.scene->occluded_at(h, &ctx, &shadow, &time, &blocked, 1);
-    else
-      svc_.scene->occluded(h, &ctx, &shadow, &blocked, 1);
-    if (blocked) return;
+    if (scene_.occluded(h, ctx, shadow, time)) return;
     outcome = luminance(beta * contrib * Li) / ls.pdf;
     const bool delta = (ls.flags & (NIMBUS_LIGHT_DELTA_POSITION | NIMBUS_LIGHT_DELTA_DIRECTION)) != 0;
     const float light_pdf = pmf * ls.pdf;
@@ -344,22 +337,6 @@ class CameraPathIntegrator : public Integrator {
   const std::vector<uint32_t> &light_groups() const { return light_group_; }  // LightMix group per light
 
  private:
-  // The scene at the path's time when something moves (SDK 1.7), else the timeless queries.
-  void intersect(const nimbus_thread_ctx_t &ctx, const nimbus_ray_t &ray, float time,
-                 nimbus_hit_t &hit) const {
-    if (timed_)
-      svc_.scene->intersect_at(host().get(), &ctx, &ray, &time, &hit, 1);
-    else
-      svc_.scene->intersect(host().get(), &ctx, &ray, &hit, 1);
-  }
-  void interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, float time,
-                   nimbus_interaction_t &ix) const {
-    if (timed_)
-      svc_.scene->interaction_at(host().get(), &ray, &hit, time, &ix);
-    else
-      svc_.scene->interaction(host().get(), &ray, &hit, &ix);
-  }
-
   Self &self() { return static_cast<Self &>(*this); }
   const Self &self() const { return static_cast<const Self &>(*this); }
 
@@ -369,7 +346,7 @@ class CameraPathIntegrator : public Integrator {
   void (*record_)(const nimbus_plugin_t *, const nimbus_thread_ctx_t *, uint32_t, float) = nullptr;
   LightSelection selection_;
   uint32_t max_depth_ = 16;
-  bool timed_ = false;  // camera paths carry a time (something moves while the shutter is open)
+  TimedScene scene_;  // at a time per camera path when something moves while the shutter is open
   std::vector<uint32_t> infinite_;
   std::vector<uint32_t> light_group_;  // LightMix group of each light
   std::vector<nimbus_light_info_t> light_info_;

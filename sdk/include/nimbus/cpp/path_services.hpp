@@ -28,6 +28,45 @@ struct PathServices {
   }
 };
 
+// The scene as a path sees it: at the path's scene time when something moves while the shutter is open
+// (SDK 1.7), else through the timeless queries, so that a static scene runs exactly as before.
+struct TimedScene {
+  const nimbus_host_scene_query_v1_t *scene = nullptr;
+  bool timed = false;
+
+  // [main-thread] Whether paths need a time: the host has the 1.7 queries and something moves.
+  static bool needed(const nimbus_host_t *h, const nimbus_host_scene_query_v1_t *scene,
+                     const nimbus_host_camera_v1_t *camera) {
+    return NIMBUS_HAS_MEMBER(camera, nimbus_host_camera_v1_t, sample_time) &&
+           NIMBUS_HAS_MEMBER(scene, nimbus_host_scene_query_v1_t, interaction_at) &&
+           camera->shutter(h, nullptr, nullptr) != 0;
+  }
+  // [render-thread] One ray each; ray, hit and ix as the scene query's.
+  void intersect(const nimbus_host_t *h, const nimbus_thread_ctx_t &ctx, const nimbus_ray_t &ray, float time,
+                 nimbus_hit_t &hit) const {
+    if (timed)
+      scene->intersect_at(h, &ctx, &ray, &time, &hit, 1);
+    else
+      scene->intersect(h, &ctx, &ray, &hit, 1);
+  }
+  bool occluded(const nimbus_host_t *h, const nimbus_thread_ctx_t &ctx, const nimbus_ray_t &ray,
+                float time) const {
+    uint8_t blocked = 0;
+    if (timed)
+      scene->occluded_at(h, &ctx, &ray, &time, &blocked, 1);
+    else
+      scene->occluded(h, &ctx, &ray, &blocked, 1);
+    return blocked != 0;
+  }
+  void interaction(const nimbus_host_t *h, const nimbus_ray_t &ray, const nimbus_hit_t &hit, float time,
+                   nimbus_interaction_t &ix) const {
+    if (timed)
+      scene->interaction_at(h, &ray, &hit, time, &ix);
+    else
+      scene->interaction(h, &ray, &hit, &ix);
+  }
+};
+
 // The services of PathServices as a descriptor's required_services list.
 #define NIMBUS_CAMERA_PATH_SERVICES                                                                  \
   "nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1", "nimbus.host.lights@1", \
