@@ -65,6 +65,18 @@ struct Quaternion {
   }
 };
 
+// Where `fraction` (in [0, 1] over the shutter) falls on an even grid of `steps` >= 2 time steps: the step
+// before it and how far towards the next, as Embree places a ray's time between time steps.
+struct GridPosition {
+  size_t step;
+  float between;
+};
+inline GridPosition grid_position(float fraction, size_t steps) {
+  const float x = std::clamp(fraction, 0.0f, 1.0f) * float(steps - 1);
+  const size_t k = std::min(size_t(x), steps - 2);
+  return {k, x - float(k)};
+}
+
 // One affine transform as T R S (the fields of Embree's RTCQuaternionDecomposition).
 struct Decomposed {
   std::array<float, 6> scale_skew{1, 1, 1, 0, 0, 0};  // sx, sy, sz, skew_xy, skew_xz, skew_yz
@@ -165,9 +177,8 @@ class MotionTransform {
   // The transform at scene time t (held still outside the shutter).
   Transform at(float t) const {
     if (!moves()) return steps_.front().matrix();
-    const float x = std::clamp((t - open_) / (close_ - open_), 0.0f, 1.0f) * float(steps_.size() - 1);
-    const size_t s = std::min(size_t(x), steps_.size() - 2);
-    return Decomposed::lerp(steps_[s], steps_[s + 1], x - float(s)).matrix();
+    const GridPosition g = grid_position((t - open_) / (close_ - open_), steps_.size());
+    return Decomposed::lerp(steps_[g.step], steps_[g.step + 1], g.between).matrix();
   }
 
  private:

@@ -191,8 +191,9 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
   // (Embree's instance hit distance t holds there too), carried back to world space below.
   const Vec3f world_dir = Vec3f::load(ray.dir);
   Vec3f org = Vec3f::load(ray.org), dir = world_dir;
+  const Transform to_world = s.motion ? s.motion->at(time) : Transform{};  // evaluated once per hit
   if (s.motion && (s.type == ShapeType::Sphere || s.type == ShapeType::Disk)) {
-    const Transform to_object = s.motion->at(time).inverse();
+    const Transform to_object = to_world.inverse();
     org = to_object.point(org), dir = to_object.vector(dir);
   }
   Vec3f p, ng, ns, dpdu, dpdv;
@@ -233,11 +234,9 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       Vec3f p0 = m.positions[i0], p1 = m.positions[i1], p2 = m.positions[i2], n[3];
       if (!m.normals.empty()) n[0] = m.normals[i0], n[1] = m.normals[i1], n[2] = m.normals[i2];
       if (m.deforms()) {
-        const float x = embree_time(time) * float(m.position_steps.size() - 1);
-        const size_t k = std::min(size_t(x), m.position_steps.size() - 2);
-        const float f = x - float(k);
+        const GridPosition g = grid_position(embree_time(time), m.position_steps.size());
         const auto lerp = [&](const std::vector<std::vector<Vec3f>> &steps, uint32_t i) {
-          return steps[k][i] * (1 - f) + steps[k + 1][i] * f;
+          return steps[g.step][i] * (1 - g.between) + steps[g.step + 1][i] * g.between;
         };
         p0 = lerp(m.position_steps, i0), p1 = lerp(m.position_steps, i1), p2 = lerp(m.position_steps, i2);
         if (!m.normal_steps.empty())
@@ -281,7 +280,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
   }
   if (s.motion) {
     // The object-space surface at the ray's time; the transform's own rounding joins the error bound.
-    const Transform m = s.motion->at(time);
+    const Transform &m = to_world;
     Vec3f moved_error;
     for (int r = 0; r < 3; ++r) {  // pbrt-v4 6.8.6: the carried error through |M|, plus the product's own
       float carried = 0, own = std::abs(m(r, 3));

@@ -103,7 +103,8 @@ TEST(IntegratorOptions, MovingSceneNeedsAnIntegratorThatRendersMotionBlur) {
               "lights: [{ type: point, position: [0, 0, 4], power: 100 }]\n");
   const ProcessResult r = run_nimbus({"render", path, "-q", "-o", dir.file("x.exr")}, dir);
   EXPECT_TRUE(exited_with(r, 1)) << r.describe();
-  EXPECT_TRUE(contains(r.err, path + ":6:5: motion: integrator 'nimbus.caustics' does not render motion blur"))
+  EXPECT_TRUE(
+      contains(r.err, path + ":6:5: motion: integrator 'nimbus.caustics' does not render motion blur"))
       << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("x.exr")));
 }
