@@ -40,6 +40,17 @@ void sample_incident(const nimbus_host_t *host, uint32_t light, const nimbus_int
   light_sample_incident(world.lights[light], world.lights.scene(), *ix, u, *out);
 }
 
+void sample_incident_at(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ix,
+                        const float u[2], float time, nimbus_light_incident_t *out) {
+  const World &world = world_of(host);
+  if (light >= world.lights.count()) {
+    std::memset(out, 0, sizeof(*out));
+    return;
+  }
+  Light moved;
+  light_sample_incident(light_at(world.lights[light], time, moved), world.lights.scene(), *ix, u, *out);
+}
+
 float pdf_incident(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ref,
                    const float wi[3], const nimbus_interaction_t *on_light) {
   const World &world = world_of(host);
@@ -73,6 +84,17 @@ void sample_emission(const nimbus_host_t *host, uint32_t light, const float u[4]
   light_sample_emission(world.lights[light], world.lights.scene(), u, *out);
 }
 
+void sample_emission_at(const nimbus_host_t *host, uint32_t light, const float u[4], float time,
+                        nimbus_light_emission_t *out) {
+  const World &world = world_of(host);
+  if (light >= world.lights.count()) {
+    std::memset(out, 0, sizeof(*out));
+    return;
+  }
+  Light moved;
+  light_sample_emission(light_at(world.lights[light], time, moved), world.lights.scene(), u, *out);
+}
+
 // p is not read: every emitter is uniform over its surface.
 void eval_emission(const nimbus_host_t *host, uint32_t light, const float *, const float n[3],
                    const float dir[3], float Le[3]) {
@@ -97,6 +119,32 @@ void pdf_emission(const nimbus_host_t *host, uint32_t light, const float *, cons
                      *pdf_dir);
 }
 
+void eval_emission_at(const nimbus_host_t *host, uint32_t light, const float *, const float n[3],
+                      const float dir[3], float time, float Le[3]) {
+  const World &ctx = world_of(host);
+  if (light >= ctx.lights.count()) {
+    Rgb(0).store(Le);
+    return;
+  }
+  const Vec3f normal = n ? Vec3f::load(n) : Vec3f(0.0f);
+  Light moved;
+  light_eval_emission(light_at(ctx.lights[light], time, moved), n ? &normal : nullptr, Vec3f::load(dir))
+      .store(Le);
+}
+
+void pdf_emission_at(const nimbus_host_t *host, uint32_t light, const float *, const float n[3],
+                     const float dir[3], float time, float *pdf_pos, float *pdf_dir) {
+  const World &ctx = world_of(host);
+  if (light >= ctx.lights.count()) {
+    *pdf_pos = *pdf_dir = 0;
+    return;
+  }
+  const Vec3f normal = n ? Vec3f::load(n) : Vec3f(0.0f);
+  Light moved;
+  light_pdf_emission(light_at(ctx.lights[light], time, moved), ctx.lights.scene(), n ? &normal : nullptr,
+                     Vec3f::load(dir), *pdf_pos, *pdf_dir);
+}
+
 }  // namespace
 
 const nimbus_host_lights_v1_t kLightsV1 = {sizeof(nimbus_host_lights_v1_t),
@@ -108,6 +156,10 @@ const nimbus_host_lights_v1_t kLightsV1 = {sizeof(nimbus_host_lights_v1_t),
                                            eval_infinite,
                                            sample_emission,
                                            eval_emission,
-                                           pdf_emission};
+                                           pdf_emission,
+                                           sample_incident_at,
+                                           sample_emission_at,
+                                           eval_emission_at,
+                                           pdf_emission_at};
 
 }  // namespace nimbus

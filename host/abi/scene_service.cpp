@@ -101,6 +101,20 @@ float generate_ray(const nimbus_host_t *host, const nimbus_camera_sample_t *samp
   return 1.0f;
 }
 
+float generate_ray_at(const nimbus_host_t *host, const nimbus_camera_sample_t *sample, float time,
+                      nimbus_ray_t *ray) {
+  world_of(host).camera.generate_ray_at(*sample, time, *ray);
+  return 1.0f;
+}
+
+float connect_at(const nimbus_host_t *host, const float p[3], float time, const float lens_u[2],
+                 float raster[2], float lens_point[3]) {
+  Vec3f lp;
+  const float w = world_of(host).camera.connect_at(Vec3f::load(p), time, lens_u, raster, lp);
+  lp.store(lens_point);
+  return w;
+}
+
 float resolution(const nimbus_host_t *host, uint32_t *width, uint32_t *height) {
   const Camera &c = world_of(host).camera;
   if (width) *width = c.width();
@@ -129,7 +143,8 @@ uint32_t shutter(const nimbus_host_t *host, float *open, float *close) {
   if (open) *open = w.shutter.open();
   if (close) *close = w.shutter.close();
   if (w.shutter.instantaneous()) return 0;
-  return w.geometry->moves() ? NIMBUS_MOTION_GEOMETRY : 0u;
+  return (w.geometry->moves() ? NIMBUS_MOTION_GEOMETRY : 0u) |
+         (w.camera.moves() ? NIMBUS_MOTION_CAMERA : 0u) | (w.lights.moves() ? NIMBUS_MOTION_LIGHTS : 0u);
 }
 
 float sample_time(const nimbus_host_t *host, float u, float *pdf) {
@@ -153,7 +168,14 @@ const nimbus_host_scene_query_v1_t kSceneQueryV1 = {sizeof(nimbus_host_scene_que
                                                     occluded_at,
                                                     interaction_at};
 
-const nimbus_host_camera_v1_t kCameraV1 = {
-    sizeof(nimbus_host_camera_v1_t), generate_ray, resolution, connect, sample_film, shutter, sample_time};
+const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t),
+                                           generate_ray,
+                                           resolution,
+                                           connect,
+                                           sample_film,
+                                           shutter,
+                                           sample_time,
+                                           generate_ray_at,
+                                           connect_at};
 
 }  // namespace nimbus

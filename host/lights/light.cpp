@@ -259,6 +259,7 @@ void light_fill_info(const Light &light, const LightScene &scene, nimbus_light_i
                  },
              },
              light.kind);
+  widen_info_over_motion(light, info);
 }
 
 }  // namespace nimbus

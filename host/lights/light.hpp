@@ -5,11 +5,13 @@
 
 #include <nimbus/lights.h>
 
+#include <memory>
 #include <variant>
 
 #include <nimbus/cpp/alias_table.hpp>
 #include <nimbus/cpp/distribution.hpp>
 #include <nimbus/cpp/math.hpp>
+#include "core/motion_transform.hpp"
 #include "geometry/geometry_scene.hpp"
 
 namespace nimbus {
@@ -79,6 +81,8 @@ struct Light {
   std::variant<PointLight, SpotLight, AreaLight, SunLight, EnvironmentLight> kind;
   uint32_t group = 0;
   float power = 0;  // luminance of the emitted flux (infinite lights: through the scene's disk)
+  // Point and spot lights: rigid motion over the shutter (null: the light holds still).
+  std::shared_ptr<const MotionTransform> motion;
   bool infinite() const {
     return std::holds_alternative<SunLight>(kind) || std::holds_alternative<EnvironmentLight>(kind);
   }
@@ -100,6 +104,13 @@ Rgb light_eval_emission(const Light &light, const Vec3f *n, const Vec3f &dir);
 void light_pdf_emission(const Light &light, const LightScene &scene, const Vec3f *n, const Vec3f &dir,
                         float &pdf_pos, float &pdf_dir);
 void light_fill_info(const Light &light, const LightScene &scene, nimbus_light_info_t &info);
+
+// The light where it is at scene time `time`: `light` itself when it holds still, else `moved`, filled
+// with its kind carried by the motion (moving_light.cpp).
+const Light &light_at(const Light &light, float time, Light &moved);
+// A moving light's info over the whole shutter: bounds of its sweep, and a spot's cone widened to every
+// axis it takes (moving_light.cpp). `info` holds the light's info at rest.
+void widen_info_over_motion(const Light &light, nimbus_light_info_t &info);
 
 // Per-kind helpers (one file each).
 void area_sample_incident(const AreaLight &a, const GeometryScene &geo, const Vec3f &p, const float u[2],

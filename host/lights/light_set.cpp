@@ -35,6 +35,7 @@ Expected<LightSet> LightSet::build(const SceneDesc &desc, GeometryScene &geo) {
     switch (ld.type) {
       case LightType::Point:
         l.kind = PointLight{ld.position, ld.intensity};
+        l.motion = ld.motion;
         l.power = 4 * kPi * luminance(ld.intensity);
         break;
       case LightType::Spot: {
@@ -49,6 +50,7 @@ Expected<LightSet> LightSet::build(const SceneDesc &desc, GeometryScene &geo) {
         l.power = luminance(ld.intensity) * 2 * kPi *
                   ((1 - s.cos_falloff_start) + (s.cos_falloff_start - s.cos_falloff_end) / 2);
         l.kind = s;
+        l.motion = ld.motion;
         break;
       }
       case LightType::Sun: {

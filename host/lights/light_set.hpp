@@ -3,6 +3,7 @@
 // the `group:` keys (a light without one is its own group).
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,11 @@ class LightSet {
   const LightScene &scene() const { return scene_; }
   // Indices of infinite lights (sun, environment), for escaped rays.
   const std::vector<uint32_t> &infinite() const { return infinite_; }
+  // Whether a light moves while the shutter is open.
+  bool moves() const {
+    return std::any_of(lights_.begin(), lights_.end(),
+                       [](const Light &l) { return l.motion && l.motion->moves(); });
+  }
 
  private:
   std::vector<Light> lights_;

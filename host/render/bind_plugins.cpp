@@ -38,6 +38,18 @@ Status bind_guide(PluginRegistry &registry, const RenderJob &job, const nimbus_h
   return Ok{};
 }
 
+// Where the scene first moves over the shutter ("file:line:column: motion"), or empty when it holds still.
+std::string first_motion(const SceneDesc &scene) {
+  const auto moves = [](const std::shared_ptr<const MotionTransform> &m) { return m && m->moves(); };
+  for (const ShapeDesc &shape : scene.shapes)
+    if (moves(shape.motion) || shape.mesh.deforms())
+      return shape.where.text() + ": " + (shape.motion ? "motion" : "deform");
+  for (const LightDesc &light : scene.lights)
+    if (moves(light.motion)) return light.where.text() + ": motion";
+  if (moves(scene.camera.motion)) return scene.path + ": camera.motion";
+  return {};
+}
+
 }  // namespace
 
 Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &job, uint32_t light_count,
@@ -47,15 +59,12 @@ Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &j
   if (!integrator) return Error{job.scene->path + ": integrator: " + integrator.error().message};
   p.integrator = std::move(integrator).value();
   // A scene that moves renders only with an integrator that gives its paths times (SDK 1.7): any other
-  // would render every object where it is when the shutter opens.
-  for (const ShapeDesc &shape : job.scene->shapes)
-    if (((shape.motion && shape.motion->moves()) || shape.mesh.deforms()) &&
-        !p.integrator.record().has_feature("motion-blur"))
-      return Error{
-          shape.where.text() + ": " + (shape.motion ? "motion" : "deform") + ": integrator '" +
-          p.integrator.id() +
-          "' does not render motion blur (no \"motion-blur\" feature); remove the object's motion or "
-          "choose an integrator that has it"};
+  // would render everything where it is when the shutter opens.
+  if (const std::string moving = first_motion(*job.scene);
+      !moving.empty() && !p.integrator.record().has_feature("motion-blur"))
+    return Error{moving + ": integrator '" + p.integrator.id() +
+                 "' does not render motion blur (no \"motion-blur\" feature); remove the motion or choose an "
+                 "integrator that has it"};
   auto sampler = registry.instantiate(job.light_sampler_for(light_count), NIMBUS_KIND_LIGHT_SAMPLER, host);
   if (!sampler) return Error{"light sampler: " + sampler.error().message};
   p.sampler = std::move(sampler).value();

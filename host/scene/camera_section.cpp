@@ -8,8 +8,8 @@ namespace nimbus::scene_yaml {
 CameraDesc read_camera(const YamlValue &section) {
   CameraDesc c;
   if (section.is_null()) return c;  // `camera:` with nothing under it: all defaults
-  const YamlMap m =
-      section.map({"type", "position", "look_at", "up", "fov", "aperture", "focus_distance", "shutter"});
+  const YamlMap m = section.map(
+      {"type", "position", "look_at", "up", "fov", "aperture", "focus_distance", "shutter", "motion"});
 
   if (auto v = m.get("type")) {
     const std::string type = v->string();
@@ -23,6 +23,7 @@ CameraDesc read_camera(const YamlValue &section) {
   if (auto v = m.get("aperture")) c.aperture = v->real(Range::at_least(0));
   if (auto v = m.get("focus_distance")) c.focus_distance = v->real(Range::greater_than(0));
   if (auto v = m.get("shutter")) c.shutter = read_shutter(*v);
+  if (auto v = m.get("motion")) c.motion = read_rigid_motion(*v, c.shutter, "the camera");
 
   // The camera frame is built from (look_at - position) and up; reject inputs that leave it undefined.
   // Errors point at the key that was written, or at the section when both came from defaults.

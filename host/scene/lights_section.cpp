@@ -32,7 +32,7 @@ void read_intensity(const YamlMap &m, LightDesc &light, double solid_angle) {
 }
 
 void read_point(const YamlMap &m, LightDesc &light) {
-  m.check_keys({"type", "position", "intensity", "power", "group"}, "a point light");
+  m.check_keys({"type", "position", "intensity", "power", "group", "motion"}, "a point light");
   light.position = m.require("position").vec3();
   read_intensity(m, light, 4 * kPi);
 }
@@ -41,7 +41,7 @@ void read_point(const YamlMap &m, LightDesc &light) {
 // SpotLight::falloff) spans the last `softness` degrees. Integrating that profile over the sphere gives
 // the solid angle 2 pi (1 - (cos(cone - softness) + cos(cone)) / 2) that turns power into intensity.
 void read_spot(const YamlMap &m, LightDesc &light) {
-  m.check_keys({"type", "position", "direction", "cone", "softness", "intensity", "power", "group"},
+  m.check_keys({"type", "position", "direction", "cone", "softness", "intensity", "power", "group", "motion"},
                "a spot light");
   light.position = m.require("position").vec3();
   light.direction = read_direction(m.require("direction"));
@@ -61,7 +61,7 @@ void read_sun(const YamlMap &m, LightDesc &light) {
   if (auto v = m.get("angular_diameter")) light.angular_diameter_degrees = v->real(Range::closed(0, 180));
 }
 
-LightDesc read_light(const YamlValue &value) {
+LightDesc read_light(const YamlValue &value, const Shutter &shutter) {
   const YamlMap m = value.map();
   const YamlValue type = m.require("type");
   const std::string name = type.string();
@@ -80,15 +80,16 @@ LightDesc read_light(const YamlValue &value) {
     type.fail("unknown light type '" + abbreviate(name) + "'; known: point, spot, sun");
   }
   if (auto v = m.get("group")) light.group = v->string();
+  if (auto v = m.get("motion")) light.motion = read_rigid_motion(*v, shutter, "a light");
   return light;
 }
 
 }  // namespace
 
-std::vector<LightDesc> read_lights(const YamlValue &section) {
+std::vector<LightDesc> read_lights(const YamlValue &section, const Shutter &shutter) {
   std::vector<LightDesc> out;
   if (section.is_null()) return out;
-  for (const YamlValue &light : section.sequence()) out.push_back(read_light(light));
+  for (const YamlValue &light : section.sequence()) out.push_back(read_light(light, shutter));
   return out;
 }
 

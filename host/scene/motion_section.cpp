@@ -1,5 +1,6 @@
 // `camera.shutter:` and an object's `motion:` — the time over which the film is exposed, and transforms
 // keyed in time within it (core/shutter.hpp, core/motion_transform.hpp).
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -65,6 +66,17 @@ std::vector<MotionTransform::Key> read_motion(
     keys.push_back({time, t});
   }
   return keys;
+}
+
+std::shared_ptr<const MotionTransform> read_rigid_motion(const YamlValue &value, const Shutter &shutter,
+                                                         std::string_view what) {
+  const auto keys = read_motion(value, shutter, [&](const Transform &t, const YamlValue &at) {
+    const auto &s = Decomposed::of(t).scale_skew;
+    const float off = std::max({std::abs(s[0] - 1), std::abs(s[1] - 1), std::abs(s[2] - 1), std::abs(s[3]),
+                                std::abs(s[4]), std::abs(s[5])});
+    if (off > 1e-4f) at.fail(std::string(what) + " moves rigidly: translate and rotate only (no scale)");
+  });
+  return std::make_shared<const MotionTransform>(keys, shutter.open(), shutter.close());
 }
 
 void read_deformation(const YamlValue &value, MeshData &mesh, MeshLibrary &library, const Shutter &shutter) {

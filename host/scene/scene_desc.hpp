@@ -61,6 +61,8 @@ struct CameraDesc {
   float aperture = 0;        // thin-lens radius; 0 = pinhole
   float focus_distance = 0;  // 0 = distance to look_at
   Shutter shutter;           // instantaneous unless something moves
+  // Rigid motion over the shutter applied to the pose above (null: the camera holds still).
+  std::shared_ptr<const MotionTransform> motion;
 };
 
 enum class MaterialType { Diffuse, Conductor, Dielectric };
@@ -145,6 +147,8 @@ struct LightDesc {
   Rgb irradiance{1, 1, 1};                 // sun: W/m^2 on a surface facing it
   float angular_diameter_degrees = 0.53f;  // sun: 0 = a delta direction
   std::string group;
+  // Rigid motion over the shutter applied to position and direction (null: the light holds still).
+  std::shared_ptr<const MotionTransform> motion;
   SourceLocation where;
 };
 

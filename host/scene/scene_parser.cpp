@@ -59,7 +59,8 @@ SceneDesc read_scene(const YAML::Node &document, const SceneSource &source) {
   if (auto v = main.get("camera")) scene.camera = scene_yaml::read_camera(*v);
   scene_yaml::MeshLibrary meshes;
   each("meshes", [&](const YamlValue &v) { scene_yaml::read_meshes(v, meshes); });
-  each("lights", [&](const YamlValue &v) { append(scene.lights, scene_yaml::read_lights(v)); });
+  each("lights",
+       [&](const YamlValue &v) { append(scene.lights, scene_yaml::read_lights(v, scene.camera.shutter)); });
   if (auto v = main.get("environment")) scene.environment = scene_yaml::read_environment(*v, scene.lights);
   scene_yaml::ObjectContext objects{scene.materials, meshes, scene.camera, scene.render, {}};
   each("objects", [&](const YamlValue &v) { append(scene.shapes, scene_yaml::read_objects(v, objects)); });

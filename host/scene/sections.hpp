@@ -31,7 +31,7 @@ CameraDesc read_camera(const YamlValue &section);                    // camera_s
 std::vector<MaterialDesc> read_materials(const YamlValue &section);  // materials_section.cpp
 void read_meshes(const YamlValue &section, MeshLibrary &library);    // mesh_section.cpp
 std::vector<ShapeDesc> read_objects(const YamlValue &section, ObjectContext &context);  // objects_section.cpp
-std::vector<LightDesc> read_lights(const YamlValue &section);                           // lights_section.cpp
+std::vector<LightDesc> read_lights(const YamlValue &section, const Shutter &shutter);   // lights_section.cpp
 // `lights` are all the scene's lights: a sky takes its sun from them.    // environment_section.cpp
 EnvironmentDesc read_environment(const YamlValue &section, const std::vector<LightDesc> &lights);
 
@@ -49,6 +49,10 @@ void read_deformation(const YamlValue &value, MeshData &mesh, MeshLibrary &libra
 std::vector<MotionTransform::Key> read_motion(
     const YamlValue &value, const Shutter &shutter,
     const std::function<void(const Transform &, const YamlValue &)> &check);
+// read_motion for a camera or a light (`what`, for errors): translations and rotations only, since a
+// scale would change its field of view or what it emits.
+std::shared_ptr<const MotionTransform> read_rigid_motion(const YamlValue &value, const Shutter &shutter,
+                                                         std::string_view what);
 
 // The triangles of a `shape: mesh` object or a `meshes:` entry in its own coordinates: inline arrays or an
 // OBJ or glTF file (read once per scene through `library`).                  // mesh_section.cpp

@@ -1,7 +1,10 @@
-// Perspective camera with an optional thin lens. The horizontal field of view spans the image width.
+// Perspective camera with an optional thin lens. The horizontal field of view spans the image width. A
+// moving camera is the same camera carried rigidly by its motion transform at the path's time.
 #pragma once
 
 #include <nimbus/scene.h>
+
+#include <memory>
 
 #include <nimbus/cpp/math.hpp>
 #include <nimbus/cpp/sampling.hpp>
@@ -21,6 +24,29 @@ class Camera {
     tan_half_ = std::tan(radians(d.fov_degrees) * 0.5f);
     aperture_ = d.aperture;
     focus_ = d.focus_distance > 0 ? d.focus_distance : length(d.look_at - d.position);
+    if (d.motion && d.motion->moves()) motion_ = d.motion;
+  }
+
+  bool moves() const { return motion_ != nullptr; }
+
+  // generate_ray with the camera where it is at scene time `time`.
+  void generate_ray_at(const nimbus_camera_sample_t &s, float time, nimbus_ray_t &ray) const {
+    generate_ray(s, ray);
+    if (!motion_) return;
+    const Transform m = motion_->at(time);
+    m.point(Vec3f::load(ray.org)).store(ray.org);
+    m.vector(Vec3f::load(ray.dir)).store(ray.dir);  // rigid: stays unit length
+  }
+
+  // connect with the camera where it is at scene time `time`: p is carried into the resting camera's
+  // world, where distances and angles are the same (the motion is rigid).
+  float connect_at(const Vec3f &p, float time, const float lens_u[2], float raster[2],
+                   Vec3f &lens_point) const {
+    if (!motion_) return connect(p, lens_u, raster, lens_point);
+    const Transform m = motion_->at(time);
+    const float w = connect(m.inverse().point(p), lens_u, raster, lens_point);
+    lens_point = m.point(lens_point);
+    return w;
   }
 
   // Primary ray through raster position (fx, fy): x to the right, y down, pixel centres at +0.5.
@@ -83,6 +109,7 @@ class Camera {
   Frame frame_{};
   Vec3f origin_;
   float tan_half_ = 1, aperture_ = 0, focus_ = 1;
+  std::shared_ptr<const MotionTransform> motion_;  // null when the camera holds still
 };
 
 }  // namespace nimbus

@@ -17,8 +17,8 @@ namespace {
 const char *const kRequired[] = {
     "nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1",  "nimbus.host.lights@1",
     "nimbus.host.film@1",        "nimbus.host.rng@1",    "nimbus.host.tasks@1", nullptr};
-// motion-blur: every light path draws a time when something moves (SDK 1.7; the camera and lights hold
-// still).
+// motion-blur: every light path draws a time when something moves (SDK 1.7), at which it leaves its
+// light and meets the camera.
 const char *const kFeatures[] = {"progressive", "lightmix", "motion-blur", nullptr};
 
 constexpr uint64_t kStreamLightPath = 1;  // distinct from the camera streams of other integrators
@@ -56,7 +56,7 @@ class LightTracer final : public sdk::Integrator {
       if (lights_->info(host().get(), i, &info) != NIMBUS_OK) return NIMBUS_E_INTERNAL;
       light_group_.push_back(info.group);
     }
-    timed_ = {scene_, sdk::TimedScene::needed(host().get(), scene_, camera_)};
+    timed_ = sdk::TimedScene::of(host().get(), scene_, camera_, lights_);
     // Beauty takes splats: register it with the splat flag (it is always active).
     film_->register_element(host().get(), "beauty", 3, NIMBUS_ELEMENT_SPLAT);
     return NIMBUS_OK;
@@ -125,7 +125,7 @@ class LightTracer final : public sdk::Integrator {
     // no number is drawn otherwise, so a static scene's paths are unchanged.
     const float time = timed_.timed ? camera_->sample_time(h, next(rng), nullptr) : 0.0f;
     nimbus_light_emission_t em;
-    lights_->sample_emission(h, light, ue, &em);
+    timed_.sample_emission(h, light, ue, time, em);
     if (!(em.pdf_pos > 0) || !(em.pdf_dir > 0)) return;
     const float inv_paths = 1.0f / float(paths_);
     const Vec3f org = Vec3f::load(em.org), n = Vec3f::load(em.n), dir = Vec3f::load(em.dir);
@@ -136,7 +136,7 @@ class LightTracer final : public sdk::Integrator {
     if ((em.flags & NIMBUS_LIGHT_AREA) && max_depth_ >= 1) {
       const float lens_u[2] = {next(rng), next(rng)};
       float raster[2], lens[3];
-      const float we = camera_->connect(h, em.org, lens_u, raster, lens);
+      const float we = timed_.connect(h, em.org, time, lens_u, raster, lens);
       const Vec3f to_cam = normalize(Vec3f::load(lens) - org);
       // One-sided emitters are seen only from the side their normal faces; two-sided ones from both,
       // whichever side this photon happened to leave from.
@@ -176,7 +176,7 @@ class LightTracer final : public sdk::Integrator {
       if (lobes & (NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY)) {
         const float lens_u[2] = {next(rng), next(rng)};
         float raster[2], lens[3];
-        const float we = camera_->connect(h, ix.p, lens_u, raster, lens);
+        const float we = timed_.connect(h, ix.p, time, lens_u, raster, lens);
         if (we > 0) {
           const Vec3f wc = normalize(Vec3f::load(lens) - p);
           float wc_arr[3], f[3];

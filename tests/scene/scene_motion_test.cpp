@@ -97,3 +97,47 @@ TEST(SceneMotion, DeformationStepsAndTheirMistakes) {
 
 }  // namespace
 }  // namespace nimbus::test
+
+namespace nimbus::test {
+namespace {
+
+TEST(SceneMotion, CameraAndLightsMoveRigidly) {
+  const SceneDesc scene = parse_ok(
+      "camera:\n  shutter: { close: 2 }\n"
+      "  motion: [{ time: 0 }, { time: 2, translate: [1, 0, 0], rotate: [0, 0, 30] }]\n"
+      "lights:\n"
+      "  - { type: point, position: [0, 0, 3], motion: [{ time: 0 }, { time: 2, translate: [0, 2, 0] }] }\n"
+      "  - { type: spot, position: [0, 0, 3], direction: [0, 0, -1], motion: [{ time: 1 }] }\n");
+  ASSERT_TRUE(scene.camera.motion);
+  EXPECT_TRUE(scene.camera.motion->moves());
+  EXPECT_NEAR(scene.camera.motion->at(1.0f).point({0, 0, 0}).x, 0.5f, 1e-5f);
+  ASSERT_TRUE(scene.lights[0].motion);
+  EXPECT_NEAR(scene.lights[0].motion->at(2.0f).point({0, 0, 3}).y, 2.0f, 1e-5f);
+  ASSERT_TRUE(scene.lights[1].motion);
+  EXPECT_FALSE(scene.lights[1].motion->moves()) << "one key holds still";
+}
+
+TEST(SceneMotion, CameraAndLightMistakesAreNamedWhereTheyAre) {
+  // A scale would change the camera's field of view or the light's emission over the shutter.
+  EXPECT_TRUE(fails_at("camera:\n  shutter: { close: 1 }\n  motion: [{ time: 0 }, { time: 1, scale: 2 }]\n",
+                       3, 25, "camera.motion[1]", "the camera moves rigidly: translate and rotate only"));
+  EXPECT_TRUE(
+      fails_at("camera:\n  shutter: { close: 1 }\nlights:\n"
+               "  - { type: point, position: [0, 0, 1], motion: [{ time: 1 }, { time: 0.5 }] }\n",
+               4, 71, "lights[0].motion[1].time", "keys out of order"));
+  EXPECT_TRUE(
+      fails_at("camera:\n  shutter: { close: 1 }\nlights:\n"
+               "  - { type: spot, position: [0, 0, 1], direction: [0, 0, -1],\n"
+               "      motion: [{ time: 0 }, { time: 1, matrix: [2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, "
+               "1] }] }\n",
+               5, 29, "lights[0].motion[1]", "a light moves rigidly"));
+  // Keys at two times need a shutter that lasts.
+  EXPECT_TRUE(fails_at("camera:\n  motion: [{ time: 0 }, { time: 1 }]\n", 2, 33, "camera.motion[1].time",
+                       "outside the shutter [0, 0]"));
+  // A sun has no motion (the sky holds still over a shutter).
+  EXPECT_TRUE(fails_at("lights:\n  - { type: sun, direction: [0, 0, -1], motion: [{ time: 0 }] }\n", 2, 41,
+                       "lights[0].motion", "unknown key"));
+}
+
+}  // namespace
+}  // namespace nimbus::test

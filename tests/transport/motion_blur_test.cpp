@@ -1,10 +1,12 @@
-// Motion blur in nimbus.pt: a render whose box slides across the floor while the shutter is open equals
+// Motion blur in nimbus.pt: a render whose box, light or camera moves while the shutter is open equals
 // the average of static renders at evenly spaced times within it (the film integrates over time), column
-// band by column band, within the noise of both; and it differs from the box frozen mid-way by far more,
-// so the comparison can fail. A scene that moves nothing draws no time: its image is the static one.
+// band by column band, within the noise of both; and it differs from the scene frozen mid-way by far
+// more, so the comparison can fail. nimbus.lt agrees with it. A scene that moves nothing draws no time:
+// its image is the static one.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,40 +43,82 @@ double band_mean(const ImageLayers &img, uint32_t c0, uint32_t c1) {
   return sum / (double(c1 - c0) * img.height);
 }
 
-TEST(MotionBlur, PathTracerAveragesTheSceneOverTheShutter) {
+// A scene of the same floor, box and point light with its camera, box and light placed by the caller.
+std::string placed_scene(const std::string &camera, const std::string &box, const std::string &light) {
+  return "render: { resolution: [48, 24], max_depth: 3 }\n"
+         "camera: { position: [0, -0.01, 6], look_at: [0, 0, 0], up: [0, 1, 0], fov: 50, shutter: { close: 1 "
+         "}" +
+         camera +
+         " }\n"
+         "materials:\n  white: { type: diffuse, albedo: 0.8 }\n  dark: { type: diffuse, albedo: 0.05 }\n"
+         "objects:\n  - { shape: rectangle, size: [20, 20], material: white }\n"
+         "  - { shape: box, size: [1, 1, 1], material: dark" +
+         (box.empty() ? std::string(", transform: { translate: [0, 0, 0.5] }") : box) +
+         " }\nlights:\n  - { type: point, power: 800" +
+         (light.find("position") == std::string::npos ? ", position: [0, 0, 4]" : "") + light + " }\n";
+}
+
+// The render of `moving` (256 iterations, two seeds) against the mean of 16 renders of `frozen(x)` for x
+// at the midpoints of 16 equal steps of [-1, 1] (32 iterations each), band by band; and against the scene
+// frozen at x = 0, which must differ by far more.
+void expect_average_of_frozen(const std::string &moving, const std::function<std::string(float)> &frozen) {
   SceneRenderer r;
-  const std::string shutter = ", shutter: { open: 0, close: 1 }";
-  const auto blurred = r.render(
-      scene("motion: [{ time: 0, translate: [-2, 0, 0.5] }, { time: 1, translate: [2, 0, 0.5] }]", shutter),
-      request(256, 1));
-  const auto again = r.render(
-      scene("motion: [{ time: 0, translate: [-2, 0, 0.5] }, { time: 1, translate: [2, 0, 0.5] }]", shutter),
-      request(256, 2));
-  // 16 static renders at the midpoints of 16 equal time steps, 32 iterations each.
+  const auto blurred = r.render(moving, request(256, 1)), again = r.render(moving, request(256, 2));
   constexpr int kSteps = 16;
-  std::vector<ImageLayers> frozen;
-  for (int k = 0; k < kSteps; ++k) {
-    const float x = -2 + 4 * (float(k) + 0.5f) / kSteps;
-    frozen.push_back(r.render(scene("transform: { translate: [" + std::to_string(x) + ", 0, 0.5] }", ""),
-                              request(32, 100 + uint64_t(k))));
-  }
-  const auto middle = r.render(scene("transform: { translate: [0, 0, 0.5] }", ""), request(256, 3));
-  ASSERT_EQ(blurred.width, 48u);
+  std::vector<ImageLayers> still;
+  for (int k = 0; k < kSteps; ++k)
+    still.push_back(r.render(frozen(-1 + 2 * (float(k) + 0.5f) / kSteps), request(32, 100 + uint64_t(k))));
+  const auto middle = r.render(frozen(0), request(256, 3));
   double worst = 0, contrast = 0;
   for (uint32_t c0 = 0; c0 < 48; c0 += 6) {
     double reference = 0;
-    for (const ImageLayers &f : frozen) reference += band_mean(f, c0, c0 + 6) / kSteps;
+    for (const ImageLayers &f : still) reference += band_mean(f, c0, c0 + 6) / kSteps;
     const double a = band_mean(blurred, c0, c0 + 6), b = band_mean(again, c0, c0 + 6);
-    // The two blurred renders' difference measures one render's band noise: sigma = |a - b| / sqrt(2) is
-    // a one-sample estimate, so it is floored at 0.5 % of the band; the reference (the same samples per
-    // pixel in total) adds as much again. 5 sigma, plus 1 % for the 16-step time quadrature.
+    // As in PathTracerAveragesTheSceneOverTheShutter: 5 sigma plus 1 % for the time quadrature.
     const double sigma = std::max(std::abs(a - b) / std::sqrt(2.0), 0.005 * reference) * std::sqrt(2.0);
     EXPECT_NEAR(a, reference, 5 * sigma + 0.01 * reference) << "columns " << c0 << "-" << c0 + 6;
     worst = std::max(worst, std::abs(a - reference) / reference);
     contrast = std::max(contrast, std::abs(band_mean(middle, c0, c0 + 6) - reference) / reference);
   }
-  // The box frozen in the middle darkens its own bands and leaves the others lit: a far larger difference.
   EXPECT_GT(contrast, 5 * std::max(worst, 0.01)) << "worst band difference " << worst;
+}
+
+std::string vec(float x, float y, float z) {
+  return "[" + std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + "]";
+}
+
+// A point light sweeping over the box: every shadow and highlight it casts, averaged (next-event
+// estimation samples the light where it is at the path's time).
+TEST(MotionBlur, MovingLightAveragesWhereItShines) {
+  expect_average_of_frozen(placed_scene("", "",
+                                        ", position: [0, 0, 4], motion: [{ time: 0, translate: [-3, 0, 0] }, "
+                                        "{ time: 1, translate: [3, 0, 0] }]"),
+                           [](float x) { return placed_scene("", "", ", position: " + vec(3 * x, 0, 4)); });
+}
+
+// A camera panning across the scene and turning as it goes: every view, averaged.
+TEST(MotionBlur, MovingCameraAveragesWhatItSees) {
+  expect_average_of_frozen(
+      placed_scene(", motion: [{ time: 0, translate: [-1.5, 0, 0], rotate: [0, 0, -10] }, "
+                   "{ time: 1, translate: [1.5, 0, 0], rotate: [0, 0, 10] }]",
+                   "", ""),
+      [](float x) {
+        // The key's transform T(x) R(z) applied to the resting pose: position, look_at and up.
+        const float a = radians(10 * x), c = std::cos(a), s = std::sin(a);
+        const auto moved = [&](float px, float py, float pz) {
+          return vec(c * px - s * py + 1.5f * x, s * px + c * py, pz);
+        };
+        return "render: { resolution: [48, 24], max_depth: 3 }\ncamera: { position: " + moved(0, -0.01f, 6) +
+               ", look_at: " + moved(0, 0, 0) + ", up: " + vec(-s, c, 0) + ", fov: 50 }\n" +
+               placed_scene("", "", "").substr(placed_scene("", "", "").find("materials:"));
+      });
+}
+
+TEST(MotionBlur, PathTracerAveragesTheSceneOverTheShutter) {
+  expect_average_of_frozen(
+      placed_scene(
+          "", ", motion: [{ time: 0, translate: [-2, 0, 0.5] }, { time: 1, translate: [2, 0, 0.5] }]", ""),
+      [](float x) { return placed_scene("", ", transform: { translate: " + vec(2 * x, 0, 0.5) + " }", ""); });
 }
 
 // The same slide as mesh deformation (the box's corners at both ends of the shutter): vertices
@@ -112,13 +156,11 @@ TEST(MotionBlur, DeformingMeshSweepsLikeTheMovingInstance) {
   }
 }
 
-// nimbus.lt gives its light paths times the same way: its blurred image agrees with nimbus.pt's band by
-// band within both renders' noise (each measured from two seeds, floored at 0.5 % of the band; 5 sigma).
-TEST(MotionBlur, LightTracerAgreesWithThePathTracer) {
+// nimbus.lt's image of `yaml` (two seeds of 128 iterations) against nimbus.pt's (two of 256), band by
+// band, within both renders' noise (each measured from its two seeds, floored at 0.5 % of the band; 5
+// sigma).
+void expect_light_tracer_agrees(const std::string &yaml) {
   SceneRenderer r;
-  const std::string yaml =
-      scene("motion: [{ time: 0, translate: [-2, 0, 0.5] }, { time: 1, translate: [2, 0, 0.5] }]",
-            ", shutter: { open: 0, close: 1 }");
   RenderRequest lt = request(128, 1);
   lt.integrator = "nimbus.lt";
   const auto lt1 = r.render(yaml, lt);
@@ -133,6 +175,22 @@ TEST(MotionBlur, LightTracerAgreesWithThePathTracer) {
     EXPECT_NEAR((l1 + l2) / 2, (p1 + p2) / 2, 5 * std::sqrt(sl * sl + sp * sp))
         << "columns " << c0 << "-" << c0 + 6;
   }
+}
+
+// nimbus.lt gives its light paths times the same way: its blurred image agrees with nimbus.pt's.
+TEST(MotionBlur, LightTracerAgreesWithThePathTracer) {
+  expect_light_tracer_agrees(
+      scene("motion: [{ time: 0, translate: [-2, 0, 0.5] }, { time: 1, translate: [2, 0, 0.5] }]",
+            ", shutter: { open: 0, close: 1 }"));
+}
+
+// The light tracer connects to the camera where it is at the light path's time, and leaves a moving light
+// where it is then: its image of a scene where camera, light and box all move agrees with nimbus.pt's.
+TEST(MotionBlur, LightTracerAgreesWhenCameraAndLightMove) {
+  expect_light_tracer_agrees(
+      placed_scene(", motion: [{ time: 0, translate: [-1, 0, 0] }, { time: 1, translate: [1, 0, 0] }]",
+                   ", motion: [{ time: 0, translate: [0, -1, 0.5] }, { time: 1, translate: [0, 1, 0.5] }]",
+                   ", motion: [{ time: 0, translate: [-3, 0, 0] }, { time: 1, translate: [3, 0, 0] }]"));
 }
 
 TEST(MotionBlur, NothingMovesNoTimeIsDrawn) {

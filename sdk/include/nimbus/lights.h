@@ -103,6 +103,22 @@ typedef struct nimbus_host_lights_v1 {
    * dir borrowed, as for eval_emission. An area light without n has pdf_dir 0; an unknown light, both 0. */
   void (*pdf_emission)(const nimbus_host_t *host, uint32_t light, const float p[3], const float n[3],
                        const float dir[3], float *pdf_pos, float *pdf_dir);
+  /* Since 1.7 (absent from older hosts' tables: check NIMBUS_HAS_MEMBER before calling). Point and spot
+   * lights may move over the shutter (the camera service's shutter() reports NIMBUS_MOTION_LIGHTS); these
+   * are the four members above with the light where it is at scene time `time`, and the same results
+   * when it holds still. Arguments, ownership and out-records as theirs. */
+  /* [render-thread] sample_incident at scene time `time`. ix, u borrowed; out caller storage. */
+  void (*sample_incident_at)(const nimbus_host_t *host, uint32_t light, const nimbus_interaction_t *ix,
+                             const float u[2], float time, nimbus_light_incident_t *out);
+  /* [render-thread] sample_emission at scene time `time`. u borrowed; out caller storage. */
+  void (*sample_emission_at)(const nimbus_host_t *host, uint32_t light, const float u[4], float time,
+                             nimbus_light_emission_t *out);
+  /* [any-thread] eval_emission at scene time `time`. p, n, dir borrowed; Le out. */
+  void (*eval_emission_at)(const nimbus_host_t *host, uint32_t light, const float p[3], const float n[3],
+                           const float dir[3], float time, float Le[3]);
+  /* [any-thread] pdf_emission at scene time `time`. p, n, dir borrowed; pdf_pos, pdf_dir out. */
+  void (*pdf_emission_at)(const nimbus_host_t *host, uint32_t light, const float p[3], const float n[3],
+                          const float dir[3], float time, float *pdf_pos, float *pdf_dir);
 } nimbus_host_lights_v1_t;
 
 #ifdef __cplusplus

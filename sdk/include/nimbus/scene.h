@@ -134,6 +134,14 @@ typedef struct nimbus_host_camera_v1 {
    * each; a photon path draws its own and carries 1 / pdf in its power. The shutter's open time (pdf 1)
    * when it opens and closes at once. */
   float (*sample_time)(const nimbus_host_t *host, float u, float *pdf);
+  /* Since 1.7. [any-thread] generate_ray with the camera where it is at scene time `time` (the same ray
+   * as generate_ray when the camera holds still). sample borrowed; ray out. Returns the sample's weight. */
+  float (*generate_ray_at)(const nimbus_host_t *host, const nimbus_camera_sample_t *sample, float time,
+                           nimbus_ray_t *ray);
+  /* Since 1.7. [any-thread] connect with the camera where it is at scene time `time`; arguments and
+   * result as connect's (p, lens_u borrowed; raster, lens_point out). */
+  float (*connect_at)(const nimbus_host_t *host, const float p[3], float time, const float lens_u[2],
+                      float raster[2], float lens_point[3]);
 } nimbus_host_camera_v1_t;
 
 /* Since 1.7: what moves while the shutter is open (nimbus_host_camera_v1_t.shutter). */

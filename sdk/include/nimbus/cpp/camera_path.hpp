@@ -122,7 +122,7 @@ class CameraPathIntegrator : public Integrator {
     elements_.register_all(svc_.film, h, self().diverted_element());
     // Motion blur (SDK 1.7): a time per camera path when something moves while the shutter is open;
     // otherwise no time is drawn and the path's random numbers are those of a static scene.
-    scene_ = {svc_.scene, TimedScene::needed(h, svc_.scene, svc_.camera)};
+    scene_ = TimedScene::of(h, svc_.scene, svc_.camera, svc_.lights);
     return NIMBUS_OK;
   }
 
@@ -175,7 +175,7 @@ class CameraPathIntegrator : public Integrator {
     // Drawn from the shutter's curve, which the film integrates over: the weight stays 1.
     const float time = scene_.timed ? svc_.camera->sample_time(h, next_uniform(rng), nullptr) : 0.0f;
     nimbus_ray_t ray;
-    const float cam_weight = svc_.camera->generate_ray(h, &cs, &ray) * filter_weight;
+    const float cam_weight = scene_.generate_ray(h, cs, time, ray) * filter_weight;
     if (cam_weight == 0) return;
 
     Rgb beta(cam_weight);
@@ -303,7 +303,7 @@ class CameraPathIntegrator : public Integrator {
       }
     } report{*this, ctx, light, outcome};
     nimbus_light_incident_t ls;
-    svc_.lights->sample_incident(h, light, &ix, u_light, &ls);
+    scene_.sample_incident(h, light, ix, u_light, time, ls);
     if (!(ls.pdf > 0)) return;
     const Rgb Li = Rgb::load(ls.L);
     if (is_black(Li)) return;

@@ -29,16 +29,25 @@ struct PathServices {
 };
 
 // The scene as a path sees it: at the path's scene time when something moves while the shutter is open
-// (SDK 1.7), else through the timeless queries, so that a static scene runs exactly as before.
+// (SDK 1.7), else through the timeless queries, so that a static scene runs exactly as before. Camera and
+// lights are part of it: either may move too.
 struct TimedScene {
   const nimbus_host_scene_query_v1_t *scene = nullptr;
+  const nimbus_host_camera_v1_t *camera = nullptr;
+  const nimbus_host_lights_v1_t *lights = nullptr;
   bool timed = false;
 
-  // [main-thread] Whether paths need a time: the host has the 1.7 queries and something moves.
+  // [main-thread] The timed view when the host has the 1.7 members and something moves, else timeless.
+  static TimedScene of(const nimbus_host_t *h, const nimbus_host_scene_query_v1_t *scene,
+                       const nimbus_host_camera_v1_t *camera, const nimbus_host_lights_v1_t *lights) {
+    return {scene, camera, lights, needed(h, scene, camera, lights)};
+  }
+  // [main-thread] Whether paths need a time: the host has the 1.7 members and something moves.
   static bool needed(const nimbus_host_t *h, const nimbus_host_scene_query_v1_t *scene,
-                     const nimbus_host_camera_v1_t *camera) {
-    return NIMBUS_HAS_MEMBER(camera, nimbus_host_camera_v1_t, sample_time) &&
+                     const nimbus_host_camera_v1_t *camera, const nimbus_host_lights_v1_t *lights) {
+    return NIMBUS_HAS_MEMBER(camera, nimbus_host_camera_v1_t, connect_at) &&
            NIMBUS_HAS_MEMBER(scene, nimbus_host_scene_query_v1_t, interaction_at) &&
+           NIMBUS_HAS_MEMBER(lights, nimbus_host_lights_v1_t, pdf_emission_at) &&
            camera->shutter(h, nullptr, nullptr) != 0;
   }
   // [render-thread] One ray each; ray, hit and ix as the scene query's.
@@ -64,6 +73,46 @@ struct TimedScene {
       scene->interaction_at(h, &ray, &hit, time, &ix);
     else
       scene->interaction(h, &ray, &hit, &ix);
+  }
+  // [any-thread] The camera's generate_ray and connect at `time`.
+  float generate_ray(const nimbus_host_t *h, const nimbus_camera_sample_t &cs, float time,
+                     nimbus_ray_t &ray) const {
+    return timed ? camera->generate_ray_at(h, &cs, time, &ray) : camera->generate_ray(h, &cs, &ray);
+  }
+  float connect(const nimbus_host_t *h, const float p[3], float time, const float lens_u[2], float raster[2],
+                float lens_point[3]) const {
+    return timed ? camera->connect_at(h, p, time, lens_u, raster, lens_point)
+                 : camera->connect(h, p, lens_u, raster, lens_point);
+  }
+  // [render-thread] The lights service's sampling at `time` (a moving light where it is then).
+  void sample_incident(const nimbus_host_t *h, uint32_t light, const nimbus_interaction_t &ix,
+                       const float u[2], float time, nimbus_light_incident_t &out) const {
+    if (timed)
+      lights->sample_incident_at(h, light, &ix, u, time, &out);
+    else
+      lights->sample_incident(h, light, &ix, u, &out);
+  }
+  void sample_emission(const nimbus_host_t *h, uint32_t light, const float u[4], float time,
+                       nimbus_light_emission_t &out) const {
+    if (timed)
+      lights->sample_emission_at(h, light, u, time, &out);
+    else
+      lights->sample_emission(h, light, u, &out);
+  }
+  // [any-thread] eval_emission and pdf_emission at `time`.
+  void eval_emission(const nimbus_host_t *h, uint32_t light, const float p[3], const float n[3],
+                     const float dir[3], float time, float Le[3]) const {
+    if (timed)
+      lights->eval_emission_at(h, light, p, n, dir, time, Le);
+    else
+      lights->eval_emission(h, light, p, n, dir, Le);
+  }
+  void pdf_emission(const nimbus_host_t *h, uint32_t light, const float p[3], const float n[3],
+                    const float dir[3], float time, float &pdf_pos, float &pdf_dir) const {
+    if (timed)
+      lights->pdf_emission_at(h, light, p, n, dir, time, &pdf_pos, &pdf_dir);
+    else
+      lights->pdf_emission(h, light, p, n, dir, &pdf_pos, &pdf_dir);
   }
 };
 
