@@ -47,7 +47,8 @@ std::vector<Photon> make_photons(size_t n) {
       const int k = curve(rng);
       y = c[k] + 0.3f * std::sin(2 * x + phi[k]) + jitter(rng);
     }
-    ph = Photon{{uint32_t(rng()), encode_octahedral(Vec3f(0, 0, 1)), {1, 1, 1}, 1, 1, 1}, {x, y, 0}};
+    ph = Photon{
+        {uint32_t(rng()), encode_octahedral(Vec3f(0, 0, 1)), {1, 1, 1}, 1, 1, 1}, {x, y, 0}, 0, 0, 0, 0};
   }
   return photons;
 }

@@ -28,6 +28,7 @@ const Light &light_at(const Light &light, float time, Light &moved) {
 
 void widen_info_over_motion(const Light &light, nimbus_light_info_t &info) {
   if (!light.motion || !light.motion->moves()) return;
+  info.flags |= NIMBUS_LIGHT_MOVES;
   // Point and spot lights rest at a point: its positions (and the spot's axes) at dense times bound the
   // sweep once padded by the largest step between neighbours, which no point of a path between two
   // neighbouring samples can stray further than. A light tree must never see a bound that excludes the

@@ -28,9 +28,11 @@ namespace nimbus::caustics {
 namespace {
 
 const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, "nimbus.host.tasks@1", nullptr};
-// The host binds the Metropolis photon guide unless the scene names another or none (SDK 1.5).
-const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix",
-                                 "default-guide=nimbus.guide.metropolis", nullptr};
+// The host binds the Metropolis photon guide unless the scene names another or none (SDK 1.5). Motion
+// blur: camera paths take the layer's times, photons their own when something moves (photon_time.hpp).
+const char *const kFeatures[] = {
+    "progressive", "photon-pass", "lightmix", "motion-blur", "default-guide=nimbus.guide.metropolis",
+    nullptr};
 // The switch, and two choices kept for measurement (docs/performance.md compares against them).
 const char *const kEmissionChoices[] = {"uniform", "adaptive-map", "guided", nullptr};
 const char *const kSelectionChoices[] = {"adaptive", "power", nullptr};
@@ -108,6 +110,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     marks_.resize(info.worker_count);
     importance_ = pass_importance_ = ImportanceMap(scene_center_, scene_radius_);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
+    merge_.clock = PhotonClock::of(h, services().camera);
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
     const bool caustics_can_form = emitters_.emits_photons() && !emitters_.targets().empty();
     // Light selection (spec 6.1): the prior from where the camera is, adapted at every photon pass.
@@ -175,6 +178,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     }
     map_active_ = schedule_.map_active();
     merge_.radius_per_length = radius_per_length(theta_pix_, schedule_.passes());
+    merge_.time_half_width = PhotonClock::half_width(schedule_.passes());
     merge_.lookup_probability = roulette_.probabilities();
     return NIMBUS_OK;
   }
@@ -324,7 +328,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   nimbus_status_t photon_pass(uint32_t pass, uint64_t paths, float filter_reach, PhotonPass::Result &result) {
     const nimbus_host_t *h = host().get();
     if (progress_) progress_->report(h, 0, paths, "photons");
-    const PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth());
+    sdk::TimedScene scene = timed_scene();
+    scene.timed = merge_.clock.timed();  // a moving camera alone leaves photons untimed
+    const PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth(), scene);
     // Guided once some lookup has marked where the camera needs photons; a resumed render's rebuild finds
     // the frozen map its pass used in the saved state.
     if (!rebuild_map_) pass_importance_ = guide_ ? importance_ : ImportanceMap(scene_center_, scene_radius_);
@@ -340,19 +346,12 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       return s;
     }
     if (progress_) progress_->report(h, paths, paths, "photons");
-    merge_ = {h,
-              services().bsdf,
-              &pass_.map(),
-              &emitters_,
-              &light_groups(),
-              ids(),
-              max_depth(),
-              result.paths,
-              &pass_importance_,
-              result.importance_ratio,
-              &pass_.path_use(),
-              merge_.radius_per_length,
-              scene_radius_};
+    // What camera passes read with this map (begin_iteration sets the radius, window and roulette).
+    merge_.host = h, merge_.bsdf = services().bsdf, merge_.map = &pass_.map(), merge_.emitters = &emitters_;
+    merge_.light_group = &light_groups(), merge_.ids = ids(), merge_.max_depth = max_depth();
+    merge_.map_paths = result.paths, merge_.importance = &pass_importance_;
+    merge_.importance_ratio = result.importance_ratio, merge_.path_use = &pass_.path_use();
+    merge_.scene_radius = scene_radius_;
     photon_work_ = result.traced > 0 ? double(result.work) / double(result.traced) : 0.0;
     return NIMBUS_OK;
   }

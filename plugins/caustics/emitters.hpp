@@ -70,6 +70,7 @@ struct Emitter {
   Vec3f rect_s;
   float rect[4] = {0, 0, 0, 0};  // s0, s1, t0, t1
   bool delta_position() const { return flags & NIMBUS_LIGHT_DELTA_POSITION; }
+  bool moves() const { return flags & NIMBUS_LIGHT_MOVES; }  // a point or spot light (SDK 1.7)
   bool delta_direction() const { return flags & NIMBUS_LIGHT_DELTA_DIRECTION; }
   bool infinite() const { return flags & NIMBUS_LIGHT_INFINITE; }
   // BSDF sampling can hit it (a PT hit technique exists).
@@ -174,9 +175,9 @@ class EmitterSet {
   }
   // The direction density of finite light `l`'s mixture at w from z (area lights: normal n), asking the
   // host for its own density there: what the photon tracer samples with.
-  float finite_pdf_dir(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w) const {
+  float finite_pdf_dir(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w, float time = 0) const {
     float pdf_pos = 0, own_pdf = 0;
-    host_pdfs(l, z, n, w, pdf_pos, own_pdf);
+    host_pdfs(l, z, n, w, time, pdf_pos, own_pdf);
     return pdf_dir(l, z, w, own_pdf);
   }
   // The direction density of that mixture at w, given the host's own density there.
@@ -240,7 +241,8 @@ class EmitterSet {
 
   // lp for light `l` emitting from `z` (area lights: with surface normal `n`) along the unit direction
   // `w` (from the light towards the receiver `p`). 0 when the light cannot emit that photon.
-  float lp(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w, const Vec3f &p) const {
+  // time: the path's scene time, read for moving lights only.
+  float lp(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w, const Vec3f &p, float time = 0) const {
     const float sel = table_.pmf(l);
     if (!(sel > 0)) return 0;
     const Emitter &e = emitters_[l];
@@ -248,21 +250,25 @@ class EmitterSet {
       return environments_[l] ? sel * sun_pdf_pos(l, p, w) * environments_[l]->pdf(-w) : 0.0f;
     if (e.infinite()) {
       float pdf_pos = 1, pdf_dir = 1;  // a delta direction: the SDK's convention
-      if (!e.delta_direction()) host_pdfs(l, z, n, w, pdf_pos, pdf_dir);
+      if (!e.delta_direction()) host_pdfs(l, z, n, w, 0, pdf_pos, pdf_dir);
       return sel * sun_pdf_pos(l, p, w) * pdf_dir;
     }
     float pdf_pos = 1, own_pdf = 0;
-    host_pdfs(l, z, n, w, pdf_pos, own_pdf);
+    host_pdfs(l, z, n, w, time, pdf_pos, own_pdf);
     if (e.delta_position()) pdf_pos = 1;
     return sel * pdf_pos * pdf_dir(l, z, w, own_pdf);
   }
 
  private:
-  void host_pdfs(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w, float &pdf_pos,
+  // The host's own densities of light l; a moving light's where it is at `time`.
+  void host_pdfs(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w, float time, float &pdf_pos,
                  float &pdf_dir) const {
     float za[3], na[3], wa[3];
     z.store(za), n.store(na), w.store(wa);
-    lights_->pdf_emission(host_, l, za, na, wa, &pdf_pos, &pdf_dir);
+    if (emitters_[l].moves() && NIMBUS_HAS_MEMBER(lights_, nimbus_host_lights_v1_t, pdf_emission_at))
+      lights_->pdf_emission_at(host_, l, za, na, wa, time, &pdf_pos, &pdf_dir);
+    else
+      lights_->pdf_emission(host_, l, za, na, wa, &pdf_pos, &pdf_dir);
   }
   // The emission density of environment light `l`, from the host's own emission samples of it.
   std::unique_ptr<EnvironmentEmission> build_environment(uint32_t l) const {
@@ -276,8 +282,10 @@ class EmitterSet {
     });
     return env;
   }
+  // An aim's cone from emission point z: fixed for a resting point or spot light, from z itself for area
+  // lights and for lights that move.
   EmissionCone cone_of(const Emitter &e, const Aim &a, const Vec3f &z) const {
-    if (e.kind != EmitterKind::Area) return a.cone;
+    if (e.kind != EmitterKind::Area && !e.moves()) return a.cone;
     const Sphere &s = targets_.clusters[a.target].sphere;
     return EmissionCone::towards(z, s.center, s.radius);
   }

@@ -27,13 +27,14 @@ struct ChainTracer {
 double trace_path(void *user, const float *u, uint32_t kind, uint64_t *path) {
   const ChainTracer &c = *static_cast<const ChainTracer *>(user);
   PhotonChunk &chunk = *c.chunk;
-  float v[kPhotonDims];
-  for (uint32_t i = 0; i < kPhotonDims; ++i) v[i] = u && u[i] >= 0.0f && u[i] < 1.0f ? u[i] : 0.5f;
+  const uint32_t dims = photon_dims(c.tracer->timed());
+  float v[kPhotonDims + 1];
+  for (uint32_t i = 0; i < dims; ++i) v[i] = u && u[i] >= 0.0f && u[i] < 1.0f ? u[i] : 0.5f;
   GuidedPath rec;
   rec.first = uint32_t(chunk.photons.size());
   rec.uniform = kind == NIMBUS_GUIDE_UNIFORM;
   if (chunk.photons.size() < c.cap) {
-    PhotonSamples samples(v, kPhotonDims);
+    PhotonSamples samples(v, dims);
     rec.target = c.tracer->trace(*c.ctx, samples, 0, 0, c.importance, chunk);
   } else {
     chunk.path_light.push_back(kNoLight);
@@ -62,7 +63,7 @@ nimbus_status_t PhotonPass::run_guided(const PhotonTracer &tracer, const GuideBi
   nimbus_guide_pass_t desc{};
   desc.header = {sizeof(desc), NIMBUS_S_TYPE_GUIDE_PASS, nullptr};
   desc.seed = seed, desc.pass = pass, desc.path_budget = paths;
-  desc.chain_count = kGuideChains, desc.dims = kPhotonDims;
+  desc.chain_count = kGuideChains, desc.dims = photon_dims(tracer.timed());
   if (nimbus_status_t s = guide.iface->begin_pass(guide.plugin, &desc); s != NIMBUS_OK) return s;
   chunks_.resize(kGuideChains);
   for (PhotonChunk &c : chunks_) c.reset();
@@ -87,7 +88,8 @@ nimbus_status_t PhotonPass::run_guided(const PhotonTracer &tracer, const GuideBi
     const Job &j = *static_cast<Job *>(user);
     for (uint64_t c = b; c < e; ++c) {
       ChainTracer ct{j.tracer, j.importance, ctx, &(*j.chunks)[c], j.cap};
-      const nimbus_guide_tracer_t t{sizeof(nimbus_guide_tracer_t), kPhotonDims, &ct, trace_path, credit_path};
+      const nimbus_guide_tracer_t t{sizeof(nimbus_guide_tracer_t), photon_dims(j.tracer->timed()), &ct,
+                                    trace_path, credit_path};
       nimbus_guide_totals_t &out = (*j.totals)[c];
       out = {};
       out.header = {sizeof(out), NIMBUS_S_TYPE_GUIDE_TOTALS, nullptr};
@@ -147,7 +149,7 @@ nimbus_status_t PhotonPass::run_guided(const PhotonTracer &tracer, const GuideBi
   result.paths = n_u;
   result.importance_ratio = ratio;
   result.proposals = sum.proposals, result.accepted = sum.accepted;
-  assemble(parallel, filter_reach);
+  assemble(parallel, filter_reach, tracer.timed());
   return NIMBUS_OK;
 }
 

@@ -5,7 +5,7 @@ namespace nimbus::caustics {
 
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
-                         float neff, CausticsRecord &rec) {
+                         float neff, const TimeWindow &window, CausticsRecord &rec) {
   uint32_t evaluated = 0;
   const float r2 = r * r;
   // The photons' power is relative to a uniform path's (guided_pass.cpp), so 1 / N_u normalises it.
@@ -13,7 +13,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
   const Mis m_neff = mis(Mis(neff) * q), eta = mis(kPi * r2 * Mis(neff) * q);
   // The merges at the photon's rough vertices (B) are lookups after the camera path's first rough vertex.
   // B carries each of its vertices' effective counts relative to N_u (guided_pass.cpp).
-  const Mis m_neff_b = mis(Mis(mc.map_paths) * mc.lookup_probability[kLaterLookup]);
+  const Mis m_neff_b = mis(Mis(mc.map_paths) * mc.lookup_probability[kLaterLookup] * window.rho);
   const Vec3f ng = Vec3f::load(ix.ng);
   float wo_arr[3];
   wo.store(wo_arr);
@@ -26,6 +26,8 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
   const uint32_t leaves = mc.map->query(Vec3f::load(ix.p), r, [&](const PhotonData &ph, float d2) {
     const uint32_t k = s + ph.depth();
     if (k > mc.max_depth) return;
+    const float in_time = window.timed ? window.weight(mc.map->time_of(ph)) : 1.0f;
+    if (!(in_time > 0)) return;
     if (!ng_encoded) ng_code = encode_octahedral(ng), ng_encoded = true;
     if (ph.normal != ng_code && !(dot(decode_octahedral(ph.normal), ng) > 0)) return;
     const Vec3f wp = decode_octahedral(ph.dir);
@@ -37,7 +39,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     if (is_black(fr)) return;
     const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
                                  m_neff_b, mis_state.gamma_sum(k), mis_state.clamped);
-    const float kernel = kernel_norm * (1 - d2 / r2);
+    const float kernel = kernel_norm * (1 - d2 / r2) * in_time;
     const Rgb c = fr * Rgb::load(ph.power) * (w * kernel);
     if (!is_finite(c) || is_black(c)) return;
     if (mc.path_use) mc.path_use->mark(mc.map->path_of(ph));

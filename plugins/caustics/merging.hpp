@@ -19,6 +19,7 @@
 #include "occupancy_filter.hpp"
 #include "path_use.hpp"
 #include "photon_map.hpp"
+#include "photon_time.hpp"
 #include "schedule.hpp"
 #include "sharpness.hpp"
 
@@ -40,6 +41,8 @@ struct MergeContext {
   double importance_ratio = 0;
   PathUse *path_use = nullptr;  // the map's paths: lookups flag those whose photons contributed
   float radius_per_length = 0;  // merge radius per unit path length at the map's pass
+  PhotonClock clock;            // photon times (spec 7.1): untimed unless geometry or lights move
+  float time_half_width = 0;    // h of the map's pass
   float scene_radius = 1;
   // Lookup probability per class of rough vertex (lookup_roulette.hpp), set before each camera pass.
   std::array<float, kLookupClasses> lookup_probability{1.0f, 1.0f};
@@ -55,10 +58,11 @@ struct LookupCost {
 
 // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
 // q: the probability that the path looked up here (the merges count 1/q times, and the merge technique
-// has q times the photon density in their weights). neff: the effective photon count at x_s.
+// has q times the photon density in their weights). neff: the effective photon count at x_s, times the
+// window's share rho of photon times. window: the photon times the lookup accepts (photon_time.hpp).
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
-                         float neff, CausticsRecord &rec);
+                         float neff, const TimeWindow &window, CausticsRecord &rec);
 
 // The effective photon count at x (spec 6.3): N_u, raised where the guide's chains aimed.
 inline float effective_photons(const MergeContext &mc, const Vec3f &x) {
@@ -73,7 +77,8 @@ inline float hit_lp(const EmitterSet &emitters, const sdk::LightHit &h) {
   return emitters.lp(h.light, h.p, h.n, h.wo, Vec3f::load(h.prev->p));
 }
 inline float nee_lp(const EmitterSet &emitters, const sdk::LightSample &s) {
-  return emitters.lp(s.light, Vec3f::load(s.ls->p), Vec3f::load(s.ls->n), -s.wi, Vec3f::load(s.ix->p));
+  return emitters.lp(s.light, Vec3f::load(s.ls->p), Vec3f::load(s.ls->n), -s.wi, Vec3f::load(s.ix->p),
+                     s.time);
 }
 
 // What one worker's camera paths counted while a map was active.
@@ -120,12 +125,18 @@ class MergingPath {
       radius_ = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
     const LookupClass cls = lookup_class(mis_.rough_count);
     q_ = mc_.lookup_probability[cls];
-    if (lookup_) neff_ = effective_photons(mc_, Vec3f::load(v.ix->p));
+    if (lookup_) {
+      // Photons of similar time only (spec 7.1): the window's share of photon times scales the merge
+      // density like the lookup probability does.
+      window_ = mc_.clock.window(v.time_u, mc_.time_half_width);
+      neff_ = effective_photons(mc_, Vec3f::load(v.ix->p)) * window_.rho;
+    }
     // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
     if (lookup_ && v.segments + 2 <= mc_.max_depth &&
         (q_ >= 1 || float(mix64(key_ ^ v.segments) >> 40) * 0x1p-24f < q_)) {
       radii_.add(radius_);
-      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, neff_, rec);
+      const LookupCost c =
+          merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, neff_, window_, rec);
       tally_.lookup_work[cls] += c.work();
       rec.lookup_moment[cls] += q_ * c.light * c.light;
       // A lookup that found light marks where the camera needs photons (spec 6.3).
@@ -164,7 +175,8 @@ class MergingPath {
   float radius_ = 0;     // r_a: fixed at the first rough vertex, used by every lookup (spec 3.5)
   uint64_t key_;         // the lookup roulette's draws: hashes of it and the vertex
   float q_ = 1;          // lookup probability at the current vertex (its merge density's factor)
-  float neff_ = 0;       // effective photon count at the current lookup vertex
+  float neff_ = 0;       // effective photon count at the current lookup vertex (times window_.rho)
+  TimeWindow window_;    // the photon times the current lookup accepts
   float length_ = 0;     // path length from the lens to the current vertex
   bool lookup_ = false;  // the current vertex looks photons up
 };

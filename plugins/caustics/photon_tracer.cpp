@@ -59,8 +59,12 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
       ue[first] = s.x, ue[first + 1] = s.y;
     }
   }
+  // A scene time from the shutter's curve when something moves (photon_time.hpp): lookups compare its
+  // number u, in which photons and camera paths are both uniform.
+  const float time_u = scene_.timed ? samples.time_number() : 0.0f;
+  const float time = scene_.timed ? svc_.camera->sample_time(h, time_u, nullptr) : 0.0f;
   nimbus_light_emission_t es;
-  svc_.lights->sample_emission(h, light, ue, &es);
+  scene_.sample_emission(h, light, ue, time, es);
   if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0)) return target;
   const bool delta_pos = es.flags & NIMBUS_LIGHT_DELTA_POSITION;
   const bool infinite = es.flags & NIMBUS_LIGHT_INFINITE;
@@ -86,8 +90,8 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
     pdf_pos = emitters_.sun_pdf_pos(light, org, dir0);
   } else {
     dir0 = emitters_.sample_direction(light, org, u_mix, ue[2], ue[3], dir0, &out.path_emission[path_index]);
-    pdf_dir = emitters_.finite_pdf_dir(light, org, n_e, dir0);
-    if (dir0 != Vec3f::load(es.dir)) Le = emitted(light, es, dir0);
+    pdf_dir = emitters_.finite_pdf_dir(light, org, n_e, dir0, time);
+    if (dir0 != Vec3f::load(es.dir)) Le = emitted(light, es, dir0, time);
   }
   const float cos_e = delta_pos || infinite ? 1.0f : std::abs(dot(n_e, dir0));
   const float lp = sel * pdf_pos * pdf_dir;
@@ -106,11 +110,11 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
   bool had_sharp = false, prev_rough = false;
   for (uint32_t depth = 1; depth <= kPhotonMaxVertices; ++depth) {
     nimbus_hit_t hit;
-    svc_.scene->intersect(h, &ctx, &ray, &hit, 1);
+    scene_.intersect(h, ctx, ray, time, hit);
     out.work += kRayWork;
     if (hit.geom_id == NIMBUS_NONE) return target;
     nimbus_interaction_t ix;
-    svc_.scene->interaction(h, &ray, &hit, &ix);
+    scene_.interaction(h, ray, hit, time, ix);
     const Vec3f wo = -Vec3f::load(ray.dir), ng = Vec3f::load(ix.ng);
     const float c_in = std::abs(dot(ng, wo));
     if (!(c_in > 0)) return target;
@@ -143,6 +147,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
       ph.B_importance2 = mis_state.log2_B_importance2();
       ph.bits = Photon::pack(depth, prev_rough, mis_state.b_valid, light);
       ph.path = path_index;
+      ph.time_u = time_u;
       out.photons.push_back(ph);
       out.work += kPhotonWork;
     }
@@ -172,10 +177,11 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
 }
 
 // Radiance (area) or intensity (point, spot) that finite light `light` emits from es.org along w.
-Rgb PhotonTracer::emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w) const {
+Rgb PhotonTracer::emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w,
+                          float time) const {
   float wo[3], Le[3];
   w.store(wo);
-  svc_.lights->eval_emission(h_, light, es.org, es.n, wo, Le);
+  scene_.eval_emission(h_, light, es.org, es.n, wo, time, Le);
   return Rgb::load(Le);
 }
 

@@ -5,11 +5,13 @@
 
 #include <nimbus/nimbus.hpp>
 
+#include <algorithm>
 #include <vector>
 
 #include <nimbus/cpp/light_selection.hpp>
 #include <nimbus/cpp/math.hpp>
 #include <nimbus/cpp/path_services.hpp>
+#include <nimbus/cpp/rng.hpp>
 #include <nimbus/nimbus.hpp>
 
 #include "emitters.hpp"
@@ -51,15 +53,23 @@ inline constexpr uint64_t kStreamPhoton = 0x70686f746f6e;  // "photon"
 
 // The numbers a photon path consumes, in a fixed order (emission, then four per vertex): the host's
 // stream of an unguided path, or a guide's primary-sample vector u (spec 6.3), so that a path is a
-// deterministic function of u. kPhotonDims covers the longest path.
+// deterministic function of u. kPhotonDims covers the longest path; a path's scene time, when photons
+// carry one (photon_time.hpp), is one more dimension after them, so a static scene's paths are unchanged.
 inline constexpr uint32_t kPhotonDims = 10 + 4 * kPhotonMaxVertices;
+inline uint32_t photon_dims(bool timed) { return kPhotonDims + (timed ? 1u : 0u); }
 class PhotonSamples {
  public:
-  explicit PhotonSamples(const nimbus_rng_t &rng) : rng_(rng) {}
+  explicit PhotonSamples(const nimbus_rng_t &rng) : rng_(rng), rng_start_(rng) {}
   PhotonSamples(const float *u, uint32_t dims) : u_(u), dims_(dims) {}
   float next() {
     if (!u_) return next_uniform(rng_);
-    return used_ < dims_ ? u_[used_++] : 0.5f;
+    return used_ < std::min(dims_, kPhotonDims) ? u_[used_++] : 0.5f;
+  }
+  // The number that picks the path's scene time: the guide's last dimension, or for the host's stream a
+  // hash of the stream's start (the stream's own numbers stay those of a static scene).
+  float time_number() const {
+    if (u_) return dims_ > kPhotonDims ? u_[kPhotonDims] : 0.5f;
+    return float(hash_keys({rng_start_.state, rng_start_.inc, 0x74696d65}) >> 40) * 0x1p-24f;
   }
   // The stream's paths stratify their emission along the pass (emission_strata.hpp); a guide's u is
   // used as given.
@@ -67,6 +77,7 @@ class PhotonSamples {
 
  private:
   nimbus_rng_t rng_{};
+  nimbus_rng_t rng_start_{};
   const float *u_ = nullptr;
   uint32_t dims_ = 0, used_ = 0;
 };
@@ -75,9 +86,18 @@ class PhotonSamples {
 class PhotonTracer {
  public:
   // selection: the camera paths' NEE light selection (the photon's first vertex weighs NEE from it).
+  // scene: the photons' view of it, timed when the clock is.
   PhotonTracer(const nimbus_host_t *host, const sdk::PathServices &svc, const sdk::LightSelection &selection,
-               const EmitterSet &emitters, uint32_t max_depth)
-      : h_(host), svc_(svc), selection_(selection), emitters_(emitters), max_depth_(max_depth) {}
+               const EmitterSet &emitters, uint32_t max_depth, const sdk::TimedScene &scene)
+      : h_(host),
+        svc_(svc),
+        selection_(selection),
+        emitters_(emitters),
+        max_depth_(max_depth),
+        scene_(scene) {}
+
+  // Whether its photons carry scene times.
+  bool timed() const { return scene_.timed; }
 
   // [render-thread] Photon path `path` of the `paths` of pass `pass` (1-based), into `out`.
   void trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t paths, uint32_t pass,
@@ -89,7 +109,7 @@ class PhotonTracer {
               const ImportanceMap *importance, PhotonChunk &out) const;
 
  private:
-  Rgb emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w) const;
+  Rgb emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w, float time) const;
   Mis first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
                        const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const;
 
@@ -98,6 +118,7 @@ class PhotonTracer {
   const sdk::LightSelection &selection_;
   const EmitterSet &emitters_;
   uint32_t max_depth_;
+  sdk::TimedScene scene_;
 };
 
 }  // namespace nimbus::caustics

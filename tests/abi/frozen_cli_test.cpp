@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "abi_test_support.hpp"
@@ -92,6 +93,33 @@ TEST(FrozenAbi10Cli, WrapperIntegratorRendersItsConstant) {
   const std::vector<float> &px = img.value().layers["beauty"].data;
   const float want[3] = {0.25f, 0.5f, 0.75f};
   for (size_t i = 0; i < px.size(); ++i) ASSERT_NEAR(px[i], want[i % 3], 1e-6) << "value " << i;
+}
+
+// A scene that moves needs an integrator that gives its paths times (the "motion-blur" feature, SDK
+// 1.7): a 1.0 integrator is refused before rendering, naming what moves, rather than rendering it frozen.
+TEST(FrozenAbi10Cli, MovingSceneIsRefusedToAnIntegratorWithoutMotionBlur) {
+  ScratchDir dir;
+  const std::string path = dir.file("moving.yaml"), out = dir.file("x.exr");
+  {
+    std::ofstream f(path);
+    f << "render: { resolution: [16, 16], integrator: org.nimbus.abi.direct }\n"
+         "camera: { position: [0, -5, 1], look_at: [0, 0, 0.5], shutter: { open: 0, close: 1 } }\n"
+         "materials: { white: { type: diffuse } }\n"
+         "objects:\n"
+         "  - { shape: rectangle, size: [10, 10], material: white }\n"
+         "  - shape: box\n"
+         "    size: [1, 1, 1]\n"
+         "    material: white\n"
+         "    motion: [{ time: 0, translate: [0, 0, 0.5] }, { time: 1, translate: [1, 0, 0.5] }]\n"
+         "lights: [{ type: point, position: [0, 0, 4], power: 100 }]\n";
+  }
+  const RunResult r =
+      run_with_plugin_path({NIMBUS_CLI, "render", path, "-q", "-o", out}, fixture_dir(), dir.path());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find(path + ":6:5: motion: integrator 'org.nimbus.abi.direct' does not render motion blur"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 }  // namespace

@@ -85,30 +85,6 @@ TEST(IntegratorOptions, MissingNamedGuideNamesFileLineColumn) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("x.exr")));
 }
 
-// A scene that moves needs an integrator that gives its paths times (the "motion-blur" feature, SDK 1.7);
-// any other is refused before rendering, naming the moving object, rather than rendering it frozen.
-TEST(IntegratorOptions, MovingSceneNeedsAnIntegratorThatRendersMotionBlur) {
-  TestDir dir;
-  const std::string path = dir.file("moving.yaml");
-  write_bytes(path,
-              "render: { resolution: [16, 16], integrator: caustics }\n"
-              "camera: { position: [0, -5, 1], look_at: [0, 0, 0.5], shutter: { open: 0, close: 1 } }\n"
-              "materials: { white: { type: diffuse } }\n"
-              "objects:\n"
-              "  - { shape: rectangle, size: [10, 10], material: white }\n"
-              "  - shape: box\n"
-              "    size: [1, 1, 1]\n"
-              "    material: white\n"
-              "    motion: [{ time: 0, translate: [0, 0, 0.5] }, { time: 1, translate: [1, 0, 0.5] }]\n"
-              "lights: [{ type: point, position: [0, 0, 4], power: 100 }]\n");
-  const ProcessResult r = run_nimbus({"render", path, "-q", "-o", dir.file("x.exr")}, dir);
-  EXPECT_TRUE(exited_with(r, 1)) << r.describe();
-  EXPECT_TRUE(
-      contains(r.err, path + ":6:5: motion: integrator 'nimbus.caustics' does not render motion blur"))
-      << r.err;
-  EXPECT_FALSE(std::filesystem::exists(dir.file("x.exr")));
-}
-
 TEST(IntegratorOptions, CommandLineOverridesTheSceneAndIsRecorded) {
   TestDir dir;
   const std::string path = box_with(dir, "  integrator: caustics\n  caustics: on\n");

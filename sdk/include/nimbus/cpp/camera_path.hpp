@@ -61,6 +61,7 @@ struct LightSample {
   float bsdf_pdf_rev = 0;  // reverse BSDF pdf (only when the extension asks for it)
   bool delta = false;      // a delta light (position or direction)
   uint32_t segments = 0;   // length of the path it completes
+  float time = 0;          // the path's scene time (0 when nothing moves)
 };
 
 // A rough or sharp surface vertex of the camera path, before it scatters.
@@ -71,6 +72,8 @@ struct PathVertex {
   nimbus_lobe_t lobes = 0;
   Rgb beta;
   uint32_t segments = 0;  // segments of the path up to this vertex
+  float time = 0;         // the path's scene time (0 when nothing moves)
+  float time_u = 0;       // the uniform number it was drawn from: the share of the exposure before it
 };
 
 // nimbus.pt's estimator: power-heuristic MIS between BSDF and light sampling, nothing else.
@@ -159,6 +162,9 @@ class CameraPathIntegrator : public Integrator {
   void sample_done(const nimbus_thread_ctx_t &, uint32_t, uint32_t, const Record &) {}
 
  protected:
+  // The scene as camera paths see it (timed when something moves while the shutter is open).
+  const TimedScene &timed_scene() const { return scene_; }
+
   // The random-number stream of camera samples: derive(pixel, iteration, kStreamCamera).
   static constexpr uint64_t kStreamCamera = 0;
 
@@ -173,7 +179,8 @@ class CameraPathIntegrator : public Integrator {
     nimbus_camera_sample_t cs{{0, 0}, {next_uniform(rng), next_uniform(rng)}};
     const float filter_weight = svc_.camera->sample_film(h, x, y, uf, cs.film);
     // Drawn from the shutter's curve, which the film integrates over: the weight stays 1.
-    const float time = scene_.timed ? svc_.camera->sample_time(h, next_uniform(rng), nullptr) : 0.0f;
+    const float time_u = scene_.timed ? next_uniform(rng) : 0.0f;
+    const float time = scene_.timed ? svc_.camera->sample_time(h, time_u, nullptr) : 0.0f;
     nimbus_ray_t ray;
     const float cam_weight = scene_.generate_ray(h, cs, time, ray) * filter_weight;
     if (cam_weight == 0) return;
@@ -227,7 +234,7 @@ class CameraPathIntegrator : public Integrator {
         rec.albedo = beta / cam_weight * Rgb::load(a);
         albedo_done = true;
       }
-      path.vertex(PathVertex{&ctx, &ix, wo, lobes, beta, segments}, rec);
+      path.vertex(PathVertex{&ctx, &ix, wo, lobes, beta, segments, time, time_u}, rec);
       if (segments >= max_depth_) break;
 
       if (!smooth_only) direct_light(ctx, ix, wo, time, rng, beta, segments + 1, rec, path);
@@ -321,8 +328,8 @@ class CameraPathIntegrator : public Integrator {
     outcome = luminance(beta * contrib * Li) / ls.pdf;
     const bool delta = (ls.flags & (NIMBUS_LIGHT_DELTA_POSITION | NIMBUS_LIGHT_DELTA_DIRECTION)) != 0;
     const float light_pdf = pmf * ls.pdf;
-    const PathWeight w =
-        path.nee(LightSample{light, &ix, &ls, wi, pmf, light_pdf, bsdf_pdf, bsdf_pdf_rev, delta, segments});
+    const PathWeight w = path.nee(
+        LightSample{light, &ix, &ls, wi, pmf, light_pdf, bsdf_pdf, bsdf_pdf_rev, delta, segments, time});
     rec.add(beta * contrib * Li * (w.w / light_pdf), light_group_[light], segments, ids(), w.divert);
   }
 

@@ -1,0 +1,64 @@
+// Time in the solver (spec 7.1). Photons carry a scene time only when geometry or lights move while the
+// shutter is open; a moving camera alone needs none, since photons live in world space.
+//
+// Times are compared in the shutter's own coordinate u = G(t), the share of the exposure before t: the
+// number each path drew its time from, uniform for camera paths and photons alike whatever the shutter's
+// curve, so photons carry no 1/g(t) factor. A lookup at u_c merges the photons with |u_p - u_c| < h, each
+// with the factor 1/(2h), plus their mirror images in the shutter's ends (u_p -> -u_p, 2 - u_p). The
+// mirrored kernel is symmetric and integrates to 1 over u_c for every u_p, so the film's average over the
+// shutter is exact at any h; the spec's window shifted inside the shutter integrates to 1 over u_p only
+// and leaves a bias at the shutter's ends that falls only as fast as h. h = (1/8) j^((alpha-1)/2) at pass
+// j shrinks with the merge radius.
+#pragma once
+
+#include <nimbus/nimbus.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "schedule.hpp"
+
+namespace nimbus::caustics {
+
+// The photon times one lookup accepts, in shutter coordinates.
+struct TimeWindow {
+  bool timed = false;
+  float center = 0, half = 0.5f;
+  float kernel = 1;  // 1/(2h): the kernel's factor in time
+  float rho = 1;     // 2h: the share of photon times it accepts, the merge density's factor
+  // The kernel's weight of a photon at u (0, 1 or 2 times `kernel`; 1 when untimed).
+  float weight(float u) const {
+    if (!timed) return 1;
+    const int n = int(std::abs(u - center) < half) + int(u + center < half) + int(2 - u - center < half);
+    return float(n) * kernel;
+  }
+};
+
+// Whether photons need times, and the window of each pass.
+class PhotonClock {
+ public:
+  // [main-thread] From the camera service's shutter (SDK 1.7): timed when geometry or lights move.
+  static PhotonClock of(const nimbus_host_t *h, const nimbus_host_camera_v1_t *camera) {
+    PhotonClock c;
+    if (!NIMBUS_HAS_MEMBER(camera, nimbus_host_camera_v1_t, connect_at)) return c;
+    float open = 0, close = 0;
+    const uint32_t moving = camera->shutter(h, &open, &close);
+    c.timed_ = (moving & (NIMBUS_MOTION_GEOMETRY | NIMBUS_MOTION_LIGHTS)) != 0 && close > open;
+    return c;
+  }
+  bool timed() const { return timed_; }
+  // Half the window's width at photon pass j (1-based), in shutter coordinates.
+  static float half_width(uint32_t pass) {
+    return 0.125f * std::pow(float(std::max(pass, 1u)), (kRadiusAlpha - 1) / 2);
+  }
+  // The window of a lookup by a camera path whose time came from u_c; h: half_width of the map's pass.
+  TimeWindow window(float u_c, float h) const {
+    if (!timed_) return {};
+    return {true, u_c, h, 1 / (2 * h), 2 * h};
+  }
+
+ private:
+  bool timed_ = false;
+};
+
+}  // namespace nimbus::caustics
