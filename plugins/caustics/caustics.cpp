@@ -21,31 +21,12 @@
 #include "merging.hpp"
 #include "photon_pass.hpp"
 #include "schedule.hpp"
+#include "solver_options.hpp"
 #include "solver_stats.hpp"
 #include "useful_pixels.hpp"
 
 namespace nimbus::caustics {
 namespace {
-
-const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, "nimbus.host.tasks@1", nullptr};
-// The host binds the Metropolis photon guide unless the scene names another or none (SDK 1.5). Motion
-// blur: camera paths take the layer's times, photons their own when something moves (photon_time.hpp).
-const char *const kFeatures[] = {
-    "progressive", "photon-pass", "lightmix", "motion-blur", "default-guide=nimbus.guide.metropolis",
-    nullptr};
-// The switch, and two choices kept for measurement (docs/performance.md compares against them).
-const char *const kEmissionChoices[] = {"uniform", "adaptive-map", "guided", nullptr};
-const char *const kSelectionChoices[] = {"adaptive", "power", nullptr};
-// Uniform emission is the default: neither the emission map nor guided passes rendered lower error at
-// equal time across the caustic scenes (docs/performance.md §8).
-const nimbus_option_decl_t kOptions[] = {
-    {"caustics", NIMBUS_OPTION_SWITCH, 0, "on", nullptr,
-     "caustics by photon merging; off renders exactly what nimbus.pt renders"},
-    {"photon_emission", NIMBUS_OPTION_CHOICE, 0, "uniform", kEmissionChoices,
-     "photon paths uniform, from an emission map learnt from the paths lookups used, or chosen by the "
-     "bound guide's chains (Metropolis photon guiding)"},
-    {"photon_light_selection", NIMBUS_OPTION_CHOICE, 0, "adaptive", kSelectionChoices,
-     "for measurement: lights chosen for photons by camera distance and usefulness, or by power alone"}};
 
 class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, CausticsRecord> {
   using Base = sdk::CameraPathIntegrator<CausticsSolver, CausticsRecord>;
@@ -72,18 +53,11 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   }
 
   nimbus_status_t prepare(const nimbus_render_setup_t &setup) override {
-    // The host validated the switch against kOptions (on or off); absent, it is the default.
-    const char *caustics = sdk::option_value(setup, "caustics");
-    enabled_ = !caustics || std::strcmp(caustics, "off") != 0;
-    const char *emission = sdk::option_value(setup, "photon_emission");
-    const char *selection = sdk::option_value(setup, "photon_light_selection");
-    uniform_emission_ = !emission || std::strcmp(emission, "guided") != 0;
-    adaptive_map_ = emission && std::strcmp(emission, "adaptive-map") == 0;
-    power_selection_ = selection && std::strcmp(selection, "power") == 0;
+    options_ = SolverOptions::of(setup);
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
     seed_ = setup.seed;
-    guide_ = uniform_emission_ ? GuideBinding{} : GuideBinding::of(setup.guide);
-    if (setup.guide && !uniform_emission_ && !guide_)
+    guide_ = options_.uniform_emission ? GuideBinding{} : GuideBinding::of(setup.guide);
+    if (setup.guide && !options_.uniform_emission && !guide_)
       log(NIMBUS_LOG_WARNING, "the bound guide has no nimbus.iface.guiding@2: photons are not guided");
     float center[3];
     scene_radius_ = services().scene->bounding_sphere(host().get(), center);
@@ -110,7 +84,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     marks_.resize(info.worker_count);
     importance_ = pass_importance_ = ImportanceMap(scene_center_, scene_radius_);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
-    merge_.clock = PhotonClock::of(h, services().camera);
+    merge_.clock = PhotonClock::of(h, services().camera, options_.times_matched);
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
     const bool caustics_can_form = emitters_.emits_photons() && !emitters_.targets().empty();
     // Light selection (spec 6.1): the prior from where the camera is, adapted at every photon pass.
@@ -118,13 +92,13 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     nimbus_ray_t eye{};
     services().camera->generate_ray(h, &centre, &eye);
     EmissionSelection::Inputs selection{emitters_.photon_powers(), Vec3f::load(eye.org), scene_radius_,
-                                        ids().lightmix, power_selection_};
+                                        ids().lightmix, options_.power_selection};
     nimbus_status_t s = emission_selection_.configure(light_sampler(), light_sampler_iface(), h,
                                                       services().lights, std::move(selection));
     if (s != NIMBUS_OK || (s = select_lights()) != NIMBUS_OK) return s;
-    emitters_.reset_emission_map(adaptive_map_);
+    emitters_.reset_emission_map(options_.adaptive_map);
     pending_used_.clear();
-    armed_ = enabled_ && caustics_can_form;
+    armed_ = options_.enabled && caustics_can_form;
     // The `caustics` element is the light of a class of paths (spec 8), with or without a map, and with
     // the switch off too (then the path tracer's share of that light).
     classify_ = caustics_can_form && ids().diverted != NIMBUS_ELEMENT_INVALID;
@@ -245,7 +219,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   }
 
   void end_render(nimbus_status_t) override {
-    if (progress_ && enabled_)
+    if (progress_ && options_.enabled)
       stats_.report(progress_, host().get(),
                     {schedule_.photon_ratio(), roulette_.probability(kFirstLookup),
                      roulette_.probability(kLaterLookup), double(importance_.cells()), double(sizeof(Photon)),
@@ -364,7 +338,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   sdk::PerWorker<CameraTally> tallies_;           // camera-path counts while a map is active
   sdk::PerWorker<ImportanceMarks> marks_;         // lookups that found light since the last iteration
 
-  bool enabled_ = true;    // the `caustics` switch
+  SolverOptions options_;  // the `caustics` switch and the measurement options
   bool armed_ = false;     // enabled, and some light emits photons towards sharp geometry
   bool classify_ = false;  // camera passes without a map sort paths into the `caustics` element
   EmitterSet emitters_;
@@ -383,8 +357,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   ImportanceMap importance_;              // every successful lookup's mark so far (spec 6.3)
   ImportanceMap pass_importance_;         // the copy the current map's pass was guided by
   EmissionSelection emission_selection_;  // light selection for photon emission (spec 6.1)
-  bool uniform_emission_ = false, adaptive_map_ = false, power_selection_ = false;  // measurement options
-  std::vector<uint64_t> pending_used_;  // a resumed map's lookup flags, until it is traced again
+  std::vector<uint64_t> pending_used_;    // a resumed map's lookup flags, until it is traced again
   bool map_active_ = false;
   UsefulPixels useful_;
   LookupRoulette roulette_;

@@ -38,8 +38,10 @@ struct TimeWindow {
 class PhotonClock {
  public:
   // [main-thread] From the camera service's shutter (SDK 1.7): timed when geometry or lights move.
-  static PhotonClock of(const nimbus_host_t *h, const nimbus_host_camera_v1_t *camera) {
+  // matched false: photons still carry times, but lookups merge photons of any time (for measurement).
+  static PhotonClock of(const nimbus_host_t *h, const nimbus_host_camera_v1_t *camera, bool matched = true) {
     PhotonClock c;
+    c.matched_ = matched;
     if (!NIMBUS_HAS_MEMBER(camera, nimbus_host_camera_v1_t, connect_at)) return c;
     float open = 0, close = 0;
     const uint32_t moving = camera->shutter(h, &open, &close);
@@ -53,12 +55,12 @@ class PhotonClock {
   }
   // The window of a lookup by a camera path whose time came from u_c; h: half_width of the map's pass.
   TimeWindow window(float u_c, float h) const {
-    if (!timed_) return {};
+    if (!timed_ || !matched_) return {};
     return {true, u_c, h, 1 / (2 * h), 2 * h};
   }
 
  private:
-  bool timed_ = false;
+  bool timed_ = false, matched_ = true;
 };
 
 }  // namespace nimbus::caustics
