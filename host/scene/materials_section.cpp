@@ -131,9 +131,9 @@ void read_conductor(const YamlMap &m, MaterialDesc &mat) {
 }
 
 void read_dielectric(const YamlMap &m, MaterialDesc &mat) {
-  m.check_keys({"type", "ior", "roughness", "normal_map", "uv_scale"}, "a dielectric");
-  // Relative IORs below 1 (e.g. an air bubble in water) need nested media, which v0 does not model.
-  if (auto v = m.get("ior")) mat.ior = v->real(Range::closed(1, 10));
+  m.check_keys({"type", "ior", "abbe", "cauchy", "sellmeier", "roughness", "normal_map", "uv_scale"},
+               "a dielectric");
+  read_dielectric_index(m, mat);
   read_roughness(m, mat);
 }
 
