@@ -1,4 +1,5 @@
-// `materials:` — a map from name to {type: diffuse | conductor | dielectric, ...}.
+// `materials:` — a map from name to {type: diffuse | conductor | dielectric, ...}. A dielectric's index of
+// refraction (ior, or a dispersive abbe, cauchy or sellmeier curve) is read by dielectric_section.cpp.
 //
 // Textures. A constant can be replaced by an image file, read through OpenImageIO (EXR, HDR, PNG, JPEG,
 // TIFF, ...) when the scene is built; a missing or unreadable file is an error naming it and the reason.
