@@ -36,7 +36,7 @@ void HostServices::init() {
 }
 
 const void *HostServices::find_service(const char *id, uint32_t rev) {
-  if (!id || rev != 1) return nullptr;  // every 1.0 service is at revision 1
+  if (!id || rev != 1) return nullptr;  // every service is at revision 1
   const std::string_view s(id);
   if (s == NIMBUS_SERVICE_SCENE_QUERY) return &kSceneQueryV1;
   if (s == NIMBUS_SERVICE_CAMERA) return &kCameraV1;
@@ -49,6 +49,7 @@ const void *HostServices::find_service(const char *id, uint32_t rev) {
   if (s == NIMBUS_SERVICE_TASKS) return &kTasksV1;
   if (s == NIMBUS_SERVICE_MEMORY) return &kMemoryV1;
   if (s == NIMBUS_SERVICE_THREAD_CHECK) return &kThreadCheckV1;
+  if (s == NIMBUS_SERVICE_SPECTRAL) return &kSpectralV1;  // since 1.7
   return nullptr;
 }
 

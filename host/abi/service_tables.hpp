@@ -1,4 +1,5 @@
-// The 1.0 service tables (defined one file per service in abi/*_service.cpp).
+// The service tables (defined one file per service in abi/*_service.cpp): 1.0's, and the spectral
+// service of 1.7.
 #pragma once
 
 #include <nimbus/nimbus.h>
@@ -16,5 +17,6 @@ extern const nimbus_host_progress_v1_t kProgressV1;
 extern const nimbus_host_tasks_v1_t kTasksV1;
 extern const nimbus_host_memory_v1_t kMemoryV1;
 extern const nimbus_host_thread_check_v1_t kThreadCheckV1;
+extern const nimbus_host_spectral_v1_t kSpectralV1;
 
 }  // namespace nimbus

@@ -113,4 +113,11 @@ const RgbUpliftTable &srgb_uplift_table() {
   return table;
 }
 
+float uplift(const Vec3f &rgb, float lambda) {
+  if (!(lambda >= kLambdaMin && lambda <= kLambdaMax)) return 0;
+  // lookup_emission gives a grey exactly too (scale 2g times the constant 1/2), but needs the table.
+  if (rgb.x == rgb.y && rgb.y == rgb.z) return std::isfinite(rgb.x) ? std::max(rgb.x, 0.0f) : 0.0f;
+  return srgb_uplift_table().lookup_emission(rgb)(lambda);
+}
+
 }  // namespace nimbus

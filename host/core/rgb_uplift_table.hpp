@@ -55,4 +55,9 @@ class RgbUpliftTable {
 // The table at the default resolution, built on first use (thread-safe) and kept for the process.
 const RgbUpliftTable &srgb_uplift_table();
 
+// The value at lambda (nm) of the smooth spectrum of linear rgb of any magnitude: the table's emission
+// uplift, so homogeneous (uplift(k rgb) = k uplift(rgb): a BSDF value albedo / pi gives uplift(albedo) / pi).
+// Negative channels count as 0; greys are exact and never build the table; 0 outside the visible range.
+float uplift(const Vec3f &rgb, float lambda);
+
 }  // namespace nimbus

@@ -48,6 +48,8 @@ class Bsdf {
   Rgb albedo(const Vec3f &wo) const {
     return std::visit([&](const auto &b) { return b.albedo(wo); }, impl_);
   }
+  // The dielectric this BSDF is, or null: paths that carry a wavelength rebuild it with their index.
+  const DielectricBsdf *dielectric() const { return std::get_if<DielectricBsdf>(&impl_); }
 
  private:
   std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf> impl_;

@@ -39,15 +39,31 @@ BsdfSample delta_sample(const Vec3f &wi, float f, uint32_t lobe, float etap) {
   return checked_sample(s);
 }
 
+// An index that is not a positive number makes the boundary index-matched rather than poisoning the film.
+float valid_eta(float eta) { return std::isfinite(eta) && eta > 0 ? eta : 1.0f; }
+
 }  // namespace
 
-DielectricBsdf::DielectricBsdf(float eta, float alpha)
-    : eta_(std::isfinite(eta) && eta > 0 ? eta : 1.0f), distrib_(alpha, alpha) {}
+DielectricBsdf::DielectricBsdf(float eta, float alpha) : eta_(valid_eta(eta)), distrib_(alpha, alpha) {}
+
+DielectricBsdf DielectricBsdf::dispersive(float eta_d, float alpha) {
+  DielectricBsdf b(eta_d, alpha);
+  b.dispersive_ = true;
+  return b;
+}
+
+DielectricBsdf DielectricBsdf::with_eta(float eta) const {
+  DielectricBsdf b = *this;
+  b.eta_ = valid_eta(eta);
+  b.dispersive_ = false;
+  return b;
+}
 
 uint32_t DielectricBsdf::lobes() const {
-  if (eta_ == 1) return NIMBUS_LOBE_TRANSMISSION | NIMBUS_LOBE_SPECULAR;
+  const uint32_t dispersion = dispersive_ ? NIMBUS_LOBE_DISPERSIVE : 0u;
+  if (eta_ == 1) return NIMBUS_LOBE_TRANSMISSION | NIMBUS_LOBE_SPECULAR | dispersion;
   return NIMBUS_LOBE_REFLECTION | NIMBUS_LOBE_TRANSMISSION |
-         (is_specular() ? NIMBUS_LOBE_SPECULAR : NIMBUS_LOBE_GLOSSY);
+         (is_specular() ? NIMBUS_LOBE_SPECULAR : NIMBUS_LOBE_GLOSSY) | dispersion;
 }
 
 float DielectricBsdf::pdf_rough(const Vec3f &from, const Vec3f &to, const Vec3f &wm, float etap,

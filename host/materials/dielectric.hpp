@@ -13,6 +13,11 @@ namespace nimbus {
 class DielectricBsdf {
  public:
   DielectricBsdf(float eta, float alpha);
+  // A glass whose index depends on wavelength, with eta its index for RGB transport (n_d): the same
+  // boundary, but lobes() adds NIMBUS_LOBE_DISPERSIVE so that paths know to carry a wavelength here.
+  static DielectricBsdf dispersive(float eta_d, float alpha);
+  // This boundary with the index eta instead: a dispersive glass at one wavelength (not dispersive itself).
+  DielectricBsdf with_eta(float eta) const;
 
   Rgb eval(const Vec3f &wo, const Vec3f &wi, TransportMode mode, float *pdf_fwd, float *pdf_rev) const;
   BsdfSample sample(const Vec3f &wo, float uc, Vec2f u, TransportMode mode) const;
@@ -41,6 +46,7 @@ class DielectricBsdf {
 
   float eta_ = 1;
   TrowbridgeReitz distrib_;
+  bool dispersive_ = false;
 };
 
 }  // namespace nimbus

@@ -16,7 +16,8 @@ Bsdf make_bsdf(const MaterialDesc &material, const Rgb &albedo, float roughness)
       return material.use_reflectance ? ConductorBsdf::mirror(material.reflectance, alpha)
                                       : ConductorBsdf::fresnel(material.eta, material.k, alpha);
     case MaterialType::Dielectric:
-      return DielectricBsdf(material.ior, alpha);
+      return material.dispersive() ? DielectricBsdf::dispersive(material.ior, alpha)
+                                   : DielectricBsdf(material.ior, alpha);
   }
   return DiffuseBsdf(albedo);  // unreachable for valid enum values
 }

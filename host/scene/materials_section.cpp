@@ -1,4 +1,5 @@
-// `materials:` — a map from name to {type: diffuse | conductor | dielectric, ...}.
+// `materials:` — a map from name to {type: diffuse | conductor | dielectric, ...}. A dielectric's index of
+// refraction (ior, or a dispersive abbe, cauchy or sellmeier curve) is read by dielectric_section.cpp.
 //
 // Textures. A constant can be replaced by an image file, read through OpenImageIO (EXR, HDR, PNG, JPEG,
 // TIFF, ...) when the scene is built; a missing or unreadable file is an error naming it and the reason.
@@ -131,9 +132,9 @@ void read_conductor(const YamlMap &m, MaterialDesc &mat) {
 }
 
 void read_dielectric(const YamlMap &m, MaterialDesc &mat) {
-  m.check_keys({"type", "ior", "roughness", "normal_map", "uv_scale"}, "a dielectric");
-  // Relative IORs below 1 (e.g. an air bubble in water) need nested media, which v0 does not model.
-  if (auto v = m.get("ior")) mat.ior = v->real(Range::closed(1, 10));
+  m.check_keys({"type", "ior", "abbe", "cauchy", "sellmeier", "roughness", "normal_map", "uv_scale"},
+               "a dielectric");
+  read_dielectric_index(m, mat);
   read_roughness(m, mat);
 }
 

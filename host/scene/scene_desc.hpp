@@ -6,10 +6,12 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nimbus/cpp/math.hpp>
+#include "core/ior_curve.hpp"
 #include "core/motion_transform.hpp"
 #include "core/shutter.hpp"
 #include "core/transform.hpp"
@@ -86,7 +88,10 @@ struct MaterialDesc {
   Rgb k{3.9f, 2.45f, 2.14f};
   bool use_reflectance = false;
   Rgb reflectance{1, 1, 1};
-  float ior = 1.5f;     // dielectric
+  float ior = 1.5f;  // dielectric: the index RGB transport uses (n_d, at 587.56 nm, for a dispersive one)
+  // Dielectric given `abbe`, `cauchy` or `sellmeier`: its index over wavelength, which paths that carry a
+  // wavelength use; empty for an index that `ior` alone gives (and for the other types).
+  std::optional<IorCurve> dispersion;
   float roughness = 0;  // conductor and dielectric: user-facing roughness in [0, 1]; GGX alpha = r^2
   // Textures replace the constant above them where present (host/scene/materials_section.cpp has the
   // syntax and conventions). Lookups use (u, v) * uv_scale with v = 0 at the bottom of the image.
@@ -94,6 +99,12 @@ struct MaterialDesc {
   TextureDesc roughness_texture;  // conductor, dielectric; first channel, as data
   TextureDesc normal_map;         // any type; tangent space, OpenGL convention (green = +v)
   Vec2f uv_scale{1, 1};
+  // The index over wavelength: the curve the scene gave, or the constant `ior`.
+  IorCurve ior_curve() const { return dispersion ? *dispersion : IorCurve::constant(ior); }
+  // Whether paths through this material must carry a wavelength.
+  bool dispersive() const {
+    return type == MaterialType::Dielectric && dispersion && dispersion->dispersive();
+  }
   bool textured() const {
     return !albedo_texture.empty() || !roughness_texture.empty() || !normal_map.empty();
   }

@@ -29,7 +29,9 @@ struct ObjectContext {
 RenderDesc read_render(const YamlValue &section);                    // render_section.cpp
 CameraDesc read_camera(const YamlValue &section);                    // camera_section.cpp
 std::vector<MaterialDesc> read_materials(const YamlValue &section);  // materials_section.cpp
-void read_meshes(const YamlValue &section, MeshLibrary &library);    // mesh_section.cpp
+// A dielectric's `ior`, `abbe`, `cauchy` or `sellmeier` into ior and dispersion.  // dielectric_section.cpp
+void read_dielectric_index(const YamlMap &material, MaterialDesc &mat);
+void read_meshes(const YamlValue &section, MeshLibrary &library);                       // mesh_section.cpp
 std::vector<ShapeDesc> read_objects(const YamlValue &section, ObjectContext &context);  // objects_section.cpp
 std::vector<LightDesc> read_lights(const YamlValue &section, const Shutter &shutter);   // lights_section.cpp
 // `lights` are all the scene's lights: a sky takes its sun from them.    // environment_section.cpp

@@ -1,5 +1,9 @@
 #include "world/world.hpp"
 
+#include <algorithm>
+
+#include "core/rgb_uplift_table.hpp"
+
 namespace nimbus {
 
 Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc, FilterType filter) {
@@ -14,6 +18,13 @@ Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc, FilterType 
   auto textures = TexturedMaterials::build(desc.materials);
   if (!textures) return textures.error();
   world->textures = std::move(textures.value());
+  if (std::any_of(desc.materials.begin(), desc.materials.end(),
+                  [](const MaterialDesc &m) { return m.dispersive(); })) {
+    for (const MaterialDesc &m : desc.materials)
+      world->dispersion.push_back(m.dispersive() ? m.dispersion : std::nullopt);
+    // Built now (0.3 s, once per process) rather than by the first render thread to uplift a colour.
+    srgb_uplift_table();
+  }
   world->sharp_objects = find_sharp_objects(desc, *world->geometry, world->bsdfs);
   world->camera = Camera(desc.camera, desc.render.width, desc.render.height);
   world->shutter = desc.camera.shutter;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/expected.hpp"
@@ -23,6 +24,9 @@ struct World {
   LightSet lights;
   std::vector<Bsdf> bsdfs;                      // one per scene material
   std::unique_ptr<TexturedMaterials> textures;  // null unless a material reads a texture
+  // Per material, the index over wavelength of a dispersive dielectric (empty for the others); the whole
+  // vector is empty when no material disperses, and paths then never need a wavelength.
+  std::vector<std::optional<IorCurve>> dispersion;
   Camera camera;
   Shutter shutter;  // the camera's (scene time)
   PixelFilter filter;
@@ -31,6 +35,12 @@ struct World {
   // Builds geometry, lights, materials and camera for `desc` (which must outlive the world), and the pixel
   // filter the render job resolved (the scene's, or the command line's instead).
   static Expected<std::unique_ptr<World>> build(const SceneDesc &desc, FilterType filter);
+
+  bool dispersive() const { return !dispersion.empty(); }
+  // The dispersive dielectric's curve of `material`, or null.
+  const IorCurve *dispersion_of(uint64_t material) const {
+    return material < dispersion.size() && dispersion[material] ? &*dispersion[material] : nullptr;
+  }
 };
 
 }  // namespace nimbus

@@ -1,4 +1,4 @@
-// materials/ior_curve.hpp: catalogue glasses against their published indices, the Abbe construction's
+// core/ior_curve.hpp: catalogue glasses against their published indices, the Abbe construction's
 // exactness, and validation of unusable curves.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <utility>
 
 #include <nimbus/cpp/spectral.hpp>
-#include "materials/ior_curve.hpp"
+#include "core/ior_curve.hpp"
 
 namespace nimbus {
 namespace {

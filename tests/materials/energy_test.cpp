@@ -7,53 +7,11 @@
 #include <vector>
 
 #include <nimbus/cpp/sampling.hpp>
+#include "furnace.hpp"
 #include "test_helpers.hpp"
 
 namespace nimbus::test {
 namespace {
-
-struct Estimate {
-  double mean = 0, std_error = 0;
-  double reflected = 0;  // fraction of valid samples that reflected
-};
-
-// Monte Carlo directional albedo of the first channel (the materials tested here are grey) from sample().
-Estimate albedo_by_sampling(const Bsdf &bsdf, const Vec3f &wo, TransportMode mode, int n, uint64_t seed) {
-  Pcg32 rng(seed);
-  double sum = 0, sum2 = 0, reflected = 0;
-  const int sqrt_n = static_cast<int>(std::sqrt(n));
-  for (int i = 0; i < sqrt_n; ++i)
-    for (int j = 0; j < sqrt_n; ++j) {
-      // Stratified u: the variance of the rough lobes comes mostly from u, uc is cheap to leave random.
-      const Vec2f u{(i + rng.uniform()) / sqrt_n, (j + rng.uniform()) / sqrt_n};
-      const BsdfSample s = bsdf.sample(wo, rng.uniform(), u, mode);
-      if (s.pdf == 0) continue;
-      const double w = s.f.x * abs_cos_theta(s.wi) / s.pdf;
-      sum += w, sum2 += w * w;
-      reflected += same_hemisphere(wo, s.wi);
-    }
-  const double count = static_cast<double>(sqrt_n) * sqrt_n;
-  Estimate e;
-  e.mean = sum / count;
-  e.std_error = std::sqrt(std::max(0.0, sum2 / count - e.mean * e.mean) / count);
-  e.reflected = reflected / count;
-  return e;
-}
-
-// The same albedo from eval() alone, with uniform sphere sampling: independent of sample().
-Estimate albedo_by_eval(const Bsdf &bsdf, const Vec3f &wo, TransportMode mode, int n, uint64_t seed) {
-  Pcg32 rng(seed);
-  double sum = 0, sum2 = 0;
-  for (int i = 0; i < n; ++i) {
-    const Vec3f wi = sample_uniform_sphere(rng.uniform(), rng.uniform());
-    const double w = bsdf.eval(wo, wi, mode).x * abs_cos_theta(wi) / kUniformSpherePdf;
-    sum += w, sum2 += w * w;
-  }
-  Estimate e;
-  e.mean = sum / n;
-  e.std_error = std::sqrt(std::max(0.0, sum2 / n - e.mean * e.mean) / n);
-  return e;
-}
 
 constexpr float kAngles[] = {0, 30, 60, 80, 89, 180, 150, 120, 100, 91};
 
@@ -102,28 +60,6 @@ TEST(Furnace, SmoothDielectricReflectPlusTransmitIsOne) {
       EXPECT_NEAR(e.reflected, fresnel, 5 * std::sqrt(fresnel * (1 - fresnel) / n) + 1e-6)
           << "ior " << ior << " theta " << theta;
     }
-}
-
-// Single-scattering GGX loses the energy that would scatter between microfacets more than once: at alpha 1
-// and normal incidence exactly ln 2 of it (see the next test). These floors are the smallest albedos this
-// model has over IORs {1.0001 .. 4} and both sides, minus 0.05, at the alphas and angles tested: a broken
-// Jacobian, Fresnel split or masking term moves the albedo by more than that. Keyed by alpha and by the
-// angle of wo from the normal line (theta and 180 - theta share a row entry).
-double albedo_floor(float alpha, float theta_deg) {
-  static constexpr float kFloorAngles[] = {0, 30, 60, 80, 89};
-  static constexpr struct {
-    float alpha;
-    double floor[5];
-  } kTable[] = {{0.05f, {0.94, 0.94, 0.94, 0.90, 0.57}}, {0.2f, {0.89, 0.87, 0.81, 0.74, 0.48}},
-                {0.3f, {0.82, 0.79, 0.72, 0.67, 0.47}},  {0.5f, {0.63, 0.61, 0.60, 0.56, 0.46}},
-                {0.8f, {0.37, 0.39, 0.48, 0.44, 0.45}},  {1.0f, {0.25, 0.28, 0.39, 0.40, 0.40}}};
-  const float from_normal = std::min(theta_deg, 180 - theta_deg);
-  for (const auto &row : kTable)
-    if (row.alpha == alpha)
-      for (int i = 0; i < 5; ++i)
-        if (kFloorAngles[i] == from_normal) return row.floor[i];
-  ADD_FAILURE() << "no albedo floor for alpha " << alpha << " theta " << theta_deg;
-  return 1;
 }
 
 // At alpha = 1, D is uniform (1 / pi), so from normal incidence the visible normals are cosine-distributed,

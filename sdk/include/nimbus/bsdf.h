@@ -20,13 +20,16 @@ typedef uint32_t nimbus_transport_mode_t;
 #define NIMBUS_MODE_RADIANCE 0u
 #define NIMBUS_MODE_IMPORTANCE 1u
 
-/* Lobe bits. */
+/* Lobe bits. lobes() may set bits beyond those a plugin knows (DISPERSIVE since 1.7): test bits with &,
+ * never compare whole masks with ==. */
 typedef uint32_t nimbus_lobe_t;
 #define NIMBUS_LOBE_REFLECTION 1u
 #define NIMBUS_LOBE_TRANSMISSION 2u
 #define NIMBUS_LOBE_DIFFUSE 4u
 #define NIMBUS_LOBE_GLOSSY 8u
 #define NIMBUS_LOBE_SPECULAR 16u /* delta */
+/* since 1.7: the material's index of refraction depends on the wavelength (see spectral.h) */
+#define NIMBUS_LOBE_DISPERSIVE 32u
 
 typedef struct nimbus_bsdf_sample {
   float wi[3];

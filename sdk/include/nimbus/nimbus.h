@@ -14,6 +14,7 @@
 #include "render_state.h"
 #include "rng.h"
 #include "scene.h"
+#include "spectral.h"
 #include "status.h"
 #include "version.h"
 

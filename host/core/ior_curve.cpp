@@ -1,4 +1,4 @@
-#include "materials/ior_curve.hpp"
+#include "core/ior_curve.hpp"
 
 #include <cmath>
 #include <limits>
