@@ -60,6 +60,14 @@ Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &j
   p.integrator = std::move(integrator).value();
   // A scene that moves renders only with an integrator that gives its paths times (SDK 1.7): any other
   // would render everything where it is when the shutter opens.
+  // Likewise a scene with a dispersive glass needs an integrator that gives its paths wavelengths: any
+  // other would render the glass at its index for the d line, without a rainbow.
+  for (const MaterialDesc &m : job.scene->materials)
+    if (m.dispersive() && !p.integrator.record().has_feature("dispersion"))
+      return Error{
+          m.where.text() + ": integrator '" + p.integrator.id() +
+          "' does not render dispersion (no \"dispersion\" feature); give the glass a constant index "
+          "or choose an integrator that has it"};
   if (const std::string moving = first_motion(*job.scene);
       !moving.empty() && !p.integrator.record().has_feature("motion-blur"))
     return Error{moving + ": integrator '" + p.integrator.id() +

@@ -153,6 +153,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     map_active_ = schedule_.map_active();
     merge_.radius_per_length = radius_per_length(theta_pix_, schedule_.passes());
     merge_.time_half_width = PhotonClock::half_width(schedule_.passes());
+    merge_.spectral = spectral(),
+    merge_.lambda_half_width = PhotonClock::lambda_half_width(schedule_.passes());
     merge_.lookup_probability = roulette_.probabilities();
     return NIMBUS_OK;
   }
@@ -304,7 +306,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     if (progress_) progress_->report(h, 0, paths, "photons");
     sdk::TimedScene scene = timed_scene();
     scene.timed = merge_.clock.timed();  // a moving camera alone leaves photons untimed
-    const PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth(), scene);
+    const PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth(), scene, spectral());
     // Guided once some lookup has marked where the camera needs photons; a resumed render's rebuild finds
     // the frozen map its pass used in the saved state.
     if (!rebuild_map_) pass_importance_ = guide_ ? importance_ : ImportanceMap(scene_center_, scene_radius_);

@@ -149,7 +149,7 @@ nimbus_status_t PhotonPass::run_guided(const PhotonTracer &tracer, const GuideBi
   result.paths = n_u;
   result.importance_ratio = ratio;
   result.proposals = sum.proposals, result.accepted = sum.accepted;
-  assemble(parallel, filter_reach, tracer.timed());
+  assemble(parallel, filter_reach, tracer);
   return NIMBUS_OK;
 }
 

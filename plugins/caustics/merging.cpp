@@ -2,10 +2,33 @@
 #include "merging.hpp"
 
 namespace nimbus::caustics {
+namespace {
+
+// What a photon of wavelength lambda_p (0: RGB) with `power` brings to a camera path of wavelength
+// lambda_c (0: RGB), as the camera path's colour state reads it (spec 7.2): an RGB photon uplifted at
+// lambda_c; a photon's value at lambda_p weighed by that wavelength's colour for an RGB camera path; for
+// two wavelengths, the photon only within the pass's window around lambda_c (mirrored at the visible
+// range's ends), times the window's kernel. False when the photon brings nothing.
+bool photon_at_wavelength(const MergeContext &mc, float lambda_p, float lambda_c, Rgb &power) {
+  if (lambda_c > 0 && lambda_p > 0) {
+    const float h = mc.lambda_half_width;
+    const MirroredWindow window{true, kLambdaMin, kLambdaMax, lambda_c, h, 1 / (2 * h), 1};
+    power = power * window.weight(lambda_p);
+  } else if (lambda_c > 0) {
+    float rgb[3];
+    power.store(rgb);
+    power = Rgb(mc.spectral->uplift(mc.host, rgb, lambda_c));
+  } else if (lambda_p > 0) {
+    power = spectral_rgb_weight(lambda_p) * power.x;
+  }
+  return !is_black(power);
+}
+
+}  // namespace
 
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
-                         float neff, const TimeWindow &window, CausticsRecord &rec) {
+                         float neff, const TimeWindow &window, float lambda, CausticsRecord &rec) {
   uint32_t evaluated = 0;
   const float r2 = r * r;
   // The photons' power is relative to a uniform path's (guided_pass.cpp), so 1 / N_u normalises it.
@@ -26,21 +49,27 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
   const uint32_t leaves = mc.map->query(Vec3f::load(ix.p), r, [&](const PhotonData &ph, float d2) {
     const uint32_t k = s + ph.depth();
     if (k > mc.max_depth) return;
-    const float in_time = window.timed ? window.weight(mc.map->time_of(ph)) : 1.0f;
+    const float in_time = window.active ? window.weight(mc.map->time_of(ph)) : 1.0f;
     if (!(in_time > 0)) return;
+    Rgb power = Rgb::load(ph.power);
+    if (mc.spectral && !photon_at_wavelength(mc, mc.map->lambda_of(ph), lambda, power)) return;
     if (!ng_encoded) ng_code = encode_octahedral(ng), ng_encoded = true;
     if (ph.normal != ng_code && !(dot(decode_octahedral(ph.normal), ng) > 0)) return;
     const Vec3f wp = decode_octahedral(ph.dir);
     float wp_arr[3], f[3], pdf_fwd = 0, pdf_rev = 0;
     wp.store(wp_arr);
-    mc.bsdf->eval(mc.host, &ix, wo_arr, wp_arr, NIMBUS_MODE_RADIANCE, f, &pdf_fwd, &pdf_rev);
+    if (lambda > 0)
+      mc.spectral->bsdf_eval(mc.host, &ix, wo_arr, wp_arr, NIMBUS_MODE_RADIANCE, lambda, f, &pdf_fwd,
+                             &pdf_rev);
+    else
+      mc.bsdf->eval(mc.host, &ix, wo_arr, wp_arr, NIMBUS_MODE_RADIANCE, f, &pdf_fwd, &pdf_rev);
     ++evaluated;
     const Rgb fr = Rgb::load(f);
     if (is_black(fr)) return;
     const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
                                  m_neff_b, mis_state.gamma_sum(k), mis_state.clamped);
     const float kernel = kernel_norm * (1 - d2 / r2) * in_time;
-    const Rgb c = fr * Rgb::load(ph.power) * (w * kernel);
+    const Rgb c = fr * power * (w * kernel);
     if (!is_finite(c) || is_black(c)) return;
     if (mc.path_use) mc.path_use->mark(mc.map->path_of(ph));
     if (mc.ids.lightmix) rec.add_merge(beta * c * inv_paths, (*mc.light_group)[ph.light()], mc.ids);

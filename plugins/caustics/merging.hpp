@@ -19,7 +19,7 @@
 #include "occupancy_filter.hpp"
 #include "path_use.hpp"
 #include "photon_map.hpp"
-#include "photon_time.hpp"
+#include "photon_windows.hpp"
 #include "schedule.hpp"
 #include "sharpness.hpp"
 
@@ -43,6 +43,10 @@ struct MergeContext {
   float radius_per_length = 0;  // merge radius per unit path length at the map's pass
   PhotonClock clock;            // photon times (spec 7.1): untimed unless geometry or lights move
   float time_half_width = 0;    // h of the map's pass
+  // Dispersion (spec 7.2): the host's spectral service when the scene disperses light (else null), and
+  // the half width (nm) of the wavelength window of the map's pass.
+  const nimbus_host_spectral_v1_t *spectral = nullptr;
+  float lambda_half_width = 0;
   float scene_radius = 1;
   // Lookup probability per class of rough vertex (lookup_roulette.hpp), set before each camera pass.
   std::array<float, kLookupClasses> lookup_probability{1.0f, 1.0f};
@@ -59,10 +63,11 @@ struct LookupCost {
 // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
 // q: the probability that the path looked up here (the merges count 1/q times, and the merge technique
 // has q times the photon density in their weights). neff: the effective photon count at x_s, times the
-// window's share rho of photon times. window: the photon times the lookup accepts (photon_time.hpp).
+// window's share rho of photon times. window: the photon times the lookup accepts (photon_windows.hpp).
+// lambda: the camera path's wavelength (0 while it carries RGB).
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
-                         float neff, const TimeWindow &window, CausticsRecord &rec);
+                         float neff, const TimeWindow &window, float lambda, CausticsRecord &rec);
 
 // The effective photon count at x (spec 6.3): N_u, raised where the guide's chains aimed.
 inline float effective_photons(const MergeContext &mc, const Vec3f &x) {
@@ -135,8 +140,8 @@ class MergingPath {
     if (lookup_ && v.segments + 2 <= mc_.max_depth &&
         (q_ >= 1 || float(mix64(key_ ^ v.segments) >> 40) * 0x1p-24f < q_)) {
       radii_.add(radius_);
-      const LookupCost c =
-          merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, neff_, window_, rec);
+      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, neff_,
+                                         window_, v.lambda, rec);
       tally_.lookup_work[cls] += c.work();
       rec.lookup_moment[cls] += q_ * c.light * c.light;
       // A lookup that found light marks where the camera needs photons (spec 6.3).

@@ -73,17 +73,18 @@ struct PhotonData {
 };
 static_assert(sizeof(PhotonData) == 32, "photon layout");
 
-// A photon as the photon tracer stores it: 60 bytes. The map keeps positions and the rest apart.
+// A photon as the photon tracer stores it: 64 bytes. The map keeps positions and the rest apart.
 struct Photon : PhotonData {
   float p[3];     // position, world space
   uint32_t path;  // the photon path it belongs to: its index in its chunk, then in the pass (path_use.hpp)
   // log2 of PhotonMis::B_importance and B_importance2, folded into B once the pass's guide totals are
   // known (guided_pass.cpp, fold_importance)
   float B_importance, B_importance2;
-  float time_u;  // its path's time as a share of the exposure (photon_time.hpp); 0 when nothing moves
+  float time_u;  // its path's time as a share of the exposure (photon_windows.hpp); 0 when nothing moves
+  float lambda;  // its wavelength (nm) after a dispersive vertex, its power then the value at it; else 0
   Vec3f position() const { return Vec3f::load(p); }
 };
-static_assert(sizeof(Photon) == 60, "photon layout");
+static_assert(sizeof(Photon) == 64, "photon layout");
 
 class PhotonKdTree {
  public:
@@ -91,16 +92,17 @@ class PhotonKdTree {
 
   // Copies `photons` into the map, in tree order: positions (12 bytes) and the rest (32 bytes) apart.
   // Queries with radii up to `reach` (if > 0) first ask an occupancy filter whether any photon is near.
-  // with_times: keep the photons' times too (only when something moves, spec 7.1).
+  // with_times, with_lambdas: keep the photons' times and wavelengths too (only when something moves or
+  // disperses light, spec 7).
   void build(const std::vector<Photon> &photons, const ParallelFor &parallel = serial_for, float reach = 0,
-             bool with_times = false) {
+             bool with_times = false, bool with_lambdas = false) {
     n_ = photons.size();
     uint32_t depth = 0;
     while (((n_ + (size_t(1) << depth) - 1) >> depth) > kLeafSize) ++depth;
     nodes_.assign((size_t(1) << (depth + 1)), Node{});
     lo_ = Vec3f(kInfinity), hi_ = Vec3f(-kInfinity);
     // The tree is built over 16-byte keys (position, photon index), which nth_element moves faster than
-    // 60-byte photons; the same comparisons on the same positions give the same permutation.
+    // 64-byte photons; the same comparisons on the same positions give the same permutation.
     std::vector<Key> &keys = keys_;  // kept from build to build, as the arrays below (no page faults)
     keys.resize(n_);
     // Keys and bounds in chunks, and below the copies in tree order: serial work in a photon pass is
@@ -141,11 +143,13 @@ class PhotonKdTree {
     data_.resize(n_);
     paths_.resize(n_);
     times_.resize(with_times ? n_ : 0);
+    lambdas_.resize(with_lambdas ? n_ : 0);
     parallel_ranges(parallel, n_, kChunk, [&](size_t b, size_t e) {
       for (size_t k = b; k < e; ++k) {
         const Photon &ph = photons[keys[k].index];
         positions_[k] = Vec3f::load(keys[k].p), data_[k] = ph, paths_[k] = ph.path;
         if (with_times) times_[k] = ph.time_u;
+        if (with_lambdas) lambdas_[k] = ph.lambda;
       }
     });
     filter_.build(
@@ -156,7 +160,7 @@ class PhotonKdTree {
   const PhotonData *data() const { return data_.data(); }  // in tree order
   // Bytes of the map: photons, kd-tree nodes, occupancy filter.
   size_t bytes() const {
-    return n_ * (sizeof(Vec3f) + sizeof(PhotonData)) + times_.size() * sizeof(float) +
+    return n_ * (sizeof(Vec3f) + sizeof(PhotonData)) + (times_.size() + lambdas_.size()) * sizeof(float) +
            nodes_.size() * sizeof(Node) + filter_.bytes();
   }
   float filter_reach() const { return filter_.reach(); }
@@ -164,6 +168,9 @@ class PhotonKdTree {
   uint32_t path_of(const PhotonData &ph) const { return paths_[size_t(&ph - data_.data())]; }
   // The time (share of the exposure) of a photon query() handed out (a map built with_times).
   float time_of(const PhotonData &ph) const { return times_[size_t(&ph - data_.data())]; }
+  // The wavelength of a photon query() handed out (a map built with_lambdas; 0 for an RGB photon).
+  float lambda_of(const PhotonData &ph) const { return lambdas_[size_t(&ph - data_.data())]; }
+  bool has_lambdas() const { return !lambdas_.empty(); }
 
   // False only if no photon lies within r of q: the map's bounds, then the occupancy filter. query()
   // asks it first; most lookups end there.
@@ -269,6 +276,7 @@ class PhotonKdTree {
   std::vector<PhotonData> data_;  // in tree order
   std::vector<uint32_t> paths_;   // in tree order: each photon's path
   std::vector<float> times_;      // in tree order: each photon's time (maps built with_times)
+  std::vector<float> lambdas_;    // in tree order: each photon's wavelength (maps built with_lambdas)
   std::vector<Key> keys_;         // build()'s scratch
   Vec3f lo_, hi_;                 // bounds of all photons
   OccupancyFilter filter_;

@@ -50,11 +50,11 @@ nimbus_status_t PhotonPass::run(const PhotonTracer &tracer, const nimbus_host_ta
   result = {};
   for (const PhotonChunk &c : chunks_) result.paths += c.paths, result.work += c.work;
   result.traced = result.paths;
-  assemble(sdk::host_parallel_for(tasks, h), filter_reach, tracer.timed());
+  assemble(sdk::host_parallel_for(tasks, h), filter_reach, tracer);
   return NIMBUS_OK;
 }
 
-void PhotonPass::assemble(const sdk::ParallelFor &parallel, float filter_reach, bool with_times) {
+void PhotonPass::assemble(const sdk::ParallelFor &parallel, float filter_reach, const PhotonTracer &tracer) {
   // Concatenate in task order: photon and path indices never depend on threads. The chunks are copied
   // concurrently, their photons' path indices moved to the pass's numbering.
   std::vector<size_t> offset(chunks_.size() + 1, 0), path_offset(chunks_.size() + 1, 0);
@@ -72,7 +72,7 @@ void PhotonPass::assemble(const sdk::ParallelFor &parallel, float filter_reach, 
     std::copy(c.path_emission.begin(), c.path_emission.end(), cells.begin() + ptrdiff_t(path_offset[i]));
   });
   use_.reset(std::move(lights), std::move(cells));
-  map_.build(photons_, parallel, filter_reach, with_times);
+  map_.build(photons_, parallel, filter_reach, tracer.timed(), tracer.dispersive());
 }
 
 float PhotonPass::filter_reach(sdk::PerWorker<RadiusHistogram> &lookup_radii) {

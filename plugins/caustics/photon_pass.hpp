@@ -82,8 +82,9 @@ class PhotonPass {
   void release();
 
  private:
-  // The chunks' photons in chunk order, then the map (with the photons' times when they carry them).
-  void assemble(const sdk::ParallelFor &parallel, float filter_reach, bool with_times);
+  // The chunks' photons in chunk order, then the map (with the photons' times and wavelengths when
+  // `tracer`'s photons carry them).
+  void assemble(const sdk::ParallelFor &parallel, float filter_reach, const PhotonTracer &tracer);
 
   std::vector<PhotonChunk> chunks_;  // one buffer per task
   std::vector<Photon> photons_;      // the tasks' photons in task order

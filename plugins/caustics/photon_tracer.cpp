@@ -59,7 +59,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
       ue[first] = s.x, ue[first + 1] = s.y;
     }
   }
-  // A scene time from the shutter's curve when something moves (photon_time.hpp): lookups compare its
+  // A scene time from the shutter's curve when something moves (photon_windows.hpp): lookups compare its
   // number u, in which photons and camera paths are both uniform.
   const float time_u = scene_.timed ? samples.time_number() : 0.0f;
   const float time = scene_.timed ? svc_.camera->sample_time(h, time_u, nullptr) : 0.0f;
@@ -99,6 +99,8 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
   if (is_black(beta) || !is_finite(beta)) return target;
   PhotonMis mis_state;
   mis_state.emit(em.hittable(), cos_e, lp);
+  // RGB until a dispersive vertex, then one wavelength and the scalar power at it (spec 7.2).
+  sdk::PathSpectrum spectrum(h, spectral_, svc_.bsdf);
 
   nimbus_ray_t ray;
   org.store(ray.org);
@@ -120,6 +122,8 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
     if (!(c_in > 0)) return target;
     mis_state.arrive(c_in);
     const nimbus_lobe_t lobes = svc_.bsdf->lobes(h, &ix);
+    spectrum.disperse(
+        lobes, [&] { return samples.next(); }, beta, false);
     const bool rough = !is_sharp(svc_.bsdf, h_, ix, lobes);
     // A photon path that missed every sharp surface ends at its first vertex (see CameraMis: merges
     // need a sharp first photon vertex). Its only photons would come after a rough-sharp-rough
@@ -148,6 +152,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
       ph.bits = Photon::pack(depth, prev_rough, mis_state.b_valid, light);
       ph.path = path_index;
       ph.time_u = time_u;
+      ph.lambda = spectrum.lambda();
       out.photons.push_back(ph);
       out.work += kPhotonWork;
     }
@@ -157,7 +162,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
     float wo_arr[3], u[3] = {samples.next(), samples.next(), samples.next()};
     wo.store(wo_arr);
     nimbus_bsdf_sample_t bs;
-    svc_.bsdf->sample(h, &ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
+    spectrum.sample(&ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
     if (!(bs.pdf > 0)) return target;
     const Vec3f wi = Vec3f::load(bs.wi);
     const bool delta = has(bs.lobe, NIMBUS_LOBE_SPECULAR);

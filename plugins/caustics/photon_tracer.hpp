@@ -12,6 +12,7 @@
 #include <nimbus/cpp/math.hpp>
 #include <nimbus/cpp/path_services.hpp>
 #include <nimbus/cpp/rng.hpp>
+#include <nimbus/cpp/spectral_path.hpp>
 #include <nimbus/nimbus.hpp>
 
 #include "emitters.hpp"
@@ -54,7 +55,7 @@ inline constexpr uint64_t kStreamPhoton = 0x70686f746f6e;  // "photon"
 // The numbers a photon path consumes, in a fixed order (emission, then four per vertex): the host's
 // stream of an unguided path, or a guide's primary-sample vector u (spec 6.3), so that a path is a
 // deterministic function of u. kPhotonDims covers the longest path; a path's scene time, when photons
-// carry one (photon_time.hpp), is one more dimension after them, so a static scene's paths are unchanged.
+// carry one (photon_windows.hpp), is one more dimension after them, so a static scene's paths are unchanged.
 inline constexpr uint32_t kPhotonDims = 10 + 4 * kPhotonMaxVertices;
 inline uint32_t photon_dims(bool timed) { return kPhotonDims + (timed ? 1u : 0u); }
 class PhotonSamples {
@@ -86,18 +87,22 @@ class PhotonSamples {
 class PhotonTracer {
  public:
   // selection: the camera paths' NEE light selection (the photon's first vertex weighs NEE from it).
-  // scene: the photons' view of it, timed when the clock is.
+  // scene: the photons' view of it, timed when the clock is. spectral: the host's spectral service when
+  // the scene disperses light (sdk::PathSpectrum::needed), else null.
   PhotonTracer(const nimbus_host_t *host, const sdk::PathServices &svc, const sdk::LightSelection &selection,
-               const EmitterSet &emitters, uint32_t max_depth, const sdk::TimedScene &scene)
+               const EmitterSet &emitters, uint32_t max_depth, const sdk::TimedScene &scene,
+               const nimbus_host_spectral_v1_t *spectral)
       : h_(host),
         svc_(svc),
         selection_(selection),
         emitters_(emitters),
         max_depth_(max_depth),
-        scene_(scene) {}
+        scene_(scene),
+        spectral_(spectral) {}
 
-  // Whether its photons carry scene times.
+  // Whether its photons carry scene times, and wavelengths after a dispersive vertex.
   bool timed() const { return scene_.timed; }
+  bool dispersive() const { return spectral_ != nullptr; }
 
   // [render-thread] Photon path `path` of the `paths` of pass `pass` (1-based), into `out`.
   void trace(const nimbus_thread_ctx_t &ctx, uint64_t path, uint64_t paths, uint32_t pass,
@@ -119,6 +124,7 @@ class PhotonTracer {
   const EmitterSet &emitters_;
   uint32_t max_depth_;
   sdk::TimedScene scene_;
+  const nimbus_host_spectral_v1_t *spectral_;
 };
 
 }  // namespace nimbus::caustics

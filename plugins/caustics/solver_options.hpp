@@ -12,10 +12,11 @@ namespace nimbus::caustics {
 
 const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, "nimbus.host.tasks@1", nullptr};
 // The host binds the Metropolis photon guide unless the scene names another or none (SDK 1.5). Motion
-// blur: camera paths take the layer's times, photons their own when something moves (photon_time.hpp).
-const char *const kFeatures[] = {
-    "progressive", "photon-pass", "lightmix", "motion-blur", "default-guide=nimbus.guide.metropolis",
-    nullptr};
+// blur and dispersion: camera paths take the layer's times and wavelengths, photons their own
+// (photon_windows.hpp).
+const char *const kFeatures[] = {"progressive", "photon-pass", "lightmix",
+                                 "motion-blur", "dispersion",  "default-guide=nimbus.guide.metropolis",
+                                 nullptr};
 // The switch, and three choices kept for measurement (docs/performance.md compares against them).
 const char *const kEmissionChoices[] = {"uniform", "adaptive-map", "guided", nullptr};
 const char *const kSelectionChoices[] = {"adaptive", "power", nullptr};

@@ -10,6 +10,7 @@
 
 #include <nimbus/cpp/math.hpp>
 #include <nimbus/cpp/path_services.hpp>
+#include <nimbus/cpp/spectral_path.hpp>
 
 namespace nimbus::lt {
 namespace {
@@ -18,8 +19,8 @@ const char *const kRequired[] = {
     "nimbus.host.scene-query@1", "nimbus.host.camera@1", "nimbus.host.bsdf@1",  "nimbus.host.lights@1",
     "nimbus.host.film@1",        "nimbus.host.rng@1",    "nimbus.host.tasks@1", nullptr};
 // motion-blur: every light path draws a time when something moves (SDK 1.7), at which it leaves its
-// light and meets the camera.
-const char *const kFeatures[] = {"progressive", "lightmix", "motion-blur", nullptr};
+// light and meets the camera; dispersion: a wavelength past a dispersive glass (SDK 1.7).
+const char *const kFeatures[] = {"progressive", "lightmix", "motion-blur", "dispersion", nullptr};
 
 constexpr uint64_t kStreamLightPath = 1;  // distinct from the camera streams of other integrators
 constexpr uint64_t kPathsPerTask = 1024;
@@ -57,6 +58,7 @@ class LightTracer final : public sdk::Integrator {
       light_group_.push_back(info.group);
     }
     timed_ = sdk::TimedScene::of(host().get(), scene_, camera_, lights_);
+    spectral_ = sdk::PathSpectrum::needed(host());  // wavelengths only in a dispersive scene
     // Beauty takes splats: register it with the splat flag (it is always active).
     film_->register_element(host().get(), "beauty", 3, NIMBUS_ELEMENT_SPLAT);
     return NIMBUS_OK;
@@ -153,6 +155,7 @@ class LightTracer final : public sdk::Integrator {
     const float cos_e = delta_pos || (em.flags & NIMBUS_LIGHT_INFINITE) ? 1.0f : std::abs(dot(n, dir));
     Rgb beta = Le * (cos_e / (pmf * em.pdf_pos * em.pdf_dir));
     const float beta_emitted = max_component(beta);
+    sdk::PathSpectrum spectrum(h, spectral_, bsdf_);  // RGB until a dispersive vertex
     nimbus_ray_t ray;
     org.store(ray.org);
     dir.store(ray.dir);
@@ -171,6 +174,8 @@ class LightTracer final : public sdk::Integrator {
       float wo_arr[3];
       wo.store(wo_arr);
       const nimbus_lobe_t lobes = bsdf_->lobes(h, &ix);
+      spectrum.disperse(
+          lobes, [&] { return next(rng); }, beta);
       const Vec3f p = Vec3f::load(ix.p), ns = Vec3f::load(ix.ns);
 
       if (lobes & (NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY)) {
@@ -181,7 +186,7 @@ class LightTracer final : public sdk::Integrator {
           const Vec3f wc = normalize(Vec3f::load(lens) - p);
           float wc_arr[3], f[3];
           wc.store(wc_arr);
-          bsdf_->eval(h, &ix, wo_arr, wc_arr, NIMBUS_MODE_IMPORTANCE, f, nullptr, nullptr);
+          spectrum.eval(&ix, wo_arr, wc_arr, NIMBUS_MODE_IMPORTANCE, f, nullptr, nullptr);
           const Rgb c = beta * Rgb::load(f) * (std::abs(dot(ns, wc)) * we * inv_paths);
           if (!is_black(c) && camera_visible(ctx, &ix, p, lens, time)) splat(ctx, raster, c, light);
         }
@@ -191,7 +196,7 @@ class LightTracer final : public sdk::Integrator {
 
       const float u[3] = {next(rng), next(rng), next(rng)};
       nimbus_bsdf_sample_t bs;
-      bsdf_->sample(h, &ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
+      spectrum.sample(&ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
       if (!(bs.pdf > 0)) return;
       const Vec3f wi = Vec3f::load(bs.wi);
       beta *= Rgb::load(bs.f) * (std::abs(dot(wi, ns)) / bs.pdf);
@@ -209,6 +214,7 @@ class LightTracer final : public sdk::Integrator {
 
   const nimbus_host_scene_query_v1_t *scene_ = nullptr;
   sdk::TimedScene timed_;  // the scene at a light path's time when something moves
+  const nimbus_host_spectral_v1_t *spectral_ = nullptr;  // null unless the scene disperses light
   const nimbus_host_camera_v1_t *camera_ = nullptr;
   const nimbus_host_bsdf_v1_t *bsdf_ = nullptr;
   const nimbus_host_lights_v1_t *lights_ = nullptr;

@@ -10,8 +10,9 @@ namespace nimbus::pt {
 namespace {
 
 const char *const kRequired[] = {NIMBUS_CAMERA_PATH_SERVICES, nullptr};
-// motion-blur: the camera-path layer gives every path a time when something moves (SDK 1.7).
-const char *const kFeatures[] = {"progressive", "lightmix", "motion-blur", nullptr};
+// motion-blur: the camera-path layer gives every path a time when something moves (SDK 1.7);
+// dispersion: a wavelength past a dispersive glass (SDK 1.7).
+const char *const kFeatures[] = {"progressive", "lightmix", "motion-blur", "dispersion", nullptr};
 
 class PathTracer final : public sdk::CameraPathIntegrator<PathTracer> {
  public:

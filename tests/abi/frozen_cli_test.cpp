@@ -95,31 +95,48 @@ TEST(FrozenAbi10Cli, WrapperIntegratorRendersItsConstant) {
   for (size_t i = 0; i < px.size(); ++i) ASSERT_NEAR(px[i], want[i % 3], 1e-6) << "value " << i;
 }
 
-// A scene that moves needs an integrator that gives its paths times (the "motion-blur" feature, SDK
-// 1.7): a 1.0 integrator is refused before rendering, naming what moves, rather than rendering it frozen.
-TEST(FrozenAbi10Cli, MovingSceneIsRefusedToAnIntegratorWithoutMotionBlur) {
+// Renders `scene` (written to a file) with the 1.0 direct integrator: refused, exit code 1, with the
+// error `where` (a position in the file) followed by `error`, and no image written.
+void expect_refused(const std::string &scene, const std::string &where, const std::string &error) {
   ScratchDir dir;
-  const std::string path = dir.file("moving.yaml"), out = dir.file("x.exr");
-  {
-    std::ofstream f(path);
-    f << "render: { resolution: [16, 16], integrator: org.nimbus.abi.direct }\n"
-         "camera: { position: [0, -5, 1], look_at: [0, 0, 0.5], shutter: { open: 0, close: 1 } }\n"
-         "materials: { white: { type: diffuse } }\n"
-         "objects:\n"
-         "  - { shape: rectangle, size: [10, 10], material: white }\n"
-         "  - shape: box\n"
-         "    size: [1, 1, 1]\n"
-         "    material: white\n"
-         "    motion: [{ time: 0, translate: [0, 0, 0.5] }, { time: 1, translate: [1, 0, 0.5] }]\n"
-         "lights: [{ type: point, position: [0, 0, 4], power: 100 }]\n";
-  }
+  const std::string path = dir.file("scene.yaml"), out = dir.file("x.exr");
+  std::ofstream(path) << "render: { resolution: [16, 16], integrator: org.nimbus.abi.direct }\n" << scene;
   const RunResult r =
       run_with_plugin_path({NIMBUS_CLI, "render", path, "-q", "-o", out}, fixture_dir(), dir.path());
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_NE(r.err.find(path + ":6:5: motion: integrator 'org.nimbus.abi.direct' does not render motion blur"),
-            std::string::npos)
-      << r.err;
+  EXPECT_NE(r.err.find(path + ":" + where + ": " + error), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// A scene that moves needs an integrator that gives its paths times (the "motion-blur" feature, SDK
+// 1.7): a 1.0 integrator is refused before rendering, naming what moves, rather than rendering it frozen.
+TEST(FrozenAbi10Cli, MovingSceneIsRefusedToAnIntegratorWithoutMotionBlur) {
+  expect_refused(
+      "camera: { position: [0, -5, 1], look_at: [0, 0, 0.5], shutter: { open: 0, close: 1 } }\n"
+      "materials: { white: { type: diffuse } }\n"
+      "objects:\n"
+      "  - { shape: rectangle, size: [10, 10], material: white }\n"
+      "  - shape: box\n"
+      "    size: [1, 1, 1]\n"
+      "    material: white\n"
+      "    motion: [{ time: 0, translate: [0, 0, 0.5] }, { time: 1, translate: [1, 0, 0.5] }]\n"
+      "lights: [{ type: point, position: [0, 0, 4], power: 100 }]\n",
+      "6:5", "motion: integrator 'org.nimbus.abi.direct' does not render motion blur");
+}
+
+// A dispersive glass needs an integrator that gives its paths wavelengths (the "dispersion" feature, SDK
+// 1.7): a 1.0 integrator is refused, naming the material, rather than rendering the glass without a
+// rainbow.
+TEST(FrozenAbi10Cli, DispersiveSceneIsRefusedToAnIntegratorWithoutDispersion) {
+  expect_refused(
+      "materials:\n"
+      "  white: { type: diffuse }\n"
+      "  flint: { type: dielectric, ior: 1.75, abbe: 25 }\n"
+      "objects:\n"
+      "  - { shape: rectangle, size: [10, 10], material: white }\n"
+      "  - { shape: sphere, radius: 0.5, center: [0, 0, 0.5], material: flint }\n"
+      "lights: [{ type: point, position: [0, 0, 4], power: 100 }]\n",
+      "4:10", "integrator 'org.nimbus.abi.direct' does not render dispersion");
 }
 
 }  // namespace

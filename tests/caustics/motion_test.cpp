@@ -7,7 +7,7 @@
 
 #include <cstring>
 
-#include "photon_time.hpp"
+#include "photon_windows.hpp"
 #include "sphere_scenes.hpp"
 
 namespace nimbus::testing {

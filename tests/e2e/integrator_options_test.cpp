@@ -63,7 +63,7 @@ TEST(IntegratorOptions, UnknownRenderKeyListsTheIntegratorsOptionsAndTheHostKeys
   EXPECT_TRUE(contains(
       r.err,
       "render.threads: nimbus.caustics has no option 'threads' (its options: caustics, photon_emission, "
-      "photon_light_selection); "
+      "photon_light_selection, photon_times); "
       "the render section's own keys: resolution, iterations"))
       << r.err;
 }

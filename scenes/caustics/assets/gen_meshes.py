@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Generates the OBJ meshes of the caustics scenes (scenes/caustics/*.yaml). Deterministic; run from any
-directory: `python3 gen_meshes.py` rewrites ring.obj, tumbler.obj, cylinder.obj and pool_water.obj next
-to this script. Z is up, metres; smooth vertex normals everywhere except on flat caps."""
+directory: `python3 gen_meshes.py` rewrites ring.obj, tumbler.obj, cylinder.obj, pool_water.obj, gem.obj
+and prism.obj next to this script. Z is up, metres; smooth vertex normals everywhere except on flat caps
+and on the gem's and the prism's facets."""
 import math
 import os
 
@@ -146,8 +147,78 @@ def pool_water():
     obj.write("pool_water.obj")
 
 
+def flat_convex(obj, triangles):
+    """Triangles of a convex solid around the origin, each with its own vertices and facet normal, wound
+    so that the normal points outwards."""
+    for a, b, c in triangles:
+        u = [b[i] - a[i] for i in range(3)]
+        v = [c[i] - a[i] for i in range(3)]
+        n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+        centre = [(a[i] + b[i] + c[i]) / 3 for i in range(3)]
+        if sum(n[i] * centre[i] for i in range(3)) < 0:
+            b, c = c, b
+            n = tuple(-x for x in n)
+        l = math.sqrt(sum(x * x for x in n))
+        n = tuple(x / l for x in n)
+        obj.tri(obj.vertex(a, n), obj.vertex(b, n), obj.vertex(c, n))
+
+
+def gem():
+    # A round brilliant of diameter 1 (scaled in the scene), in the classic proportions: table 57 % of
+    # the diameter, crown angle 34.5 degrees, pavilion angle 40.75 degrees, a thin girdle; eightfold
+    # symmetric with 16 girdle points, flat facets. The girdle's middle is at z = 0, the culet below.
+    obj = Obj("gem: round brilliant, diameter 1, flat facets")
+    r, rt, g = 0.5, 0.285, 0.01
+    crown = (r - rt) * math.tan(math.radians(34.5))
+    pavilion = r * math.tan(math.radians(40.75))
+
+    def ring(radius, z, n, offset=0.0):
+        return [(radius * math.cos(2 * math.pi * (k + offset) / n), radius * math.sin(2 * math.pi * (k + offset) / n), z)
+                for k in range(n)]
+
+    table = ring(rt, g + crown, 8)
+    top, bottom = ring(r, g, 16), ring(r, -g, 16)
+    culet = (0.0, 0.0, -pavilion)
+    tris = [(table[0], table[k], table[k + 1]) for k in range(1, 7)]
+    for k in range(8):
+        t0, t1 = table[k], table[(k + 1) % 8]
+        g0, g1, g2 = top[2 * k], top[2 * k + 1], top[(2 * k + 2) % 16]
+        tris += [(t0, g0, g1), (t0, g1, t1), (t1, g1, g2)]
+    for k in range(16):
+        a, b = top[k], top[(k + 1) % 16]
+        c, d = bottom[(k + 1) % 16], bottom[k]
+        tris += [(a, b, c), (a, c, d), (d, c, culet)]
+    flat_convex(obj, tris)
+    obj.write("gem.obj")
+
+
+def prism():
+    # A triangular glass prism: an equilateral cross-section of side 1 in the xz plane (base on z = 0,
+    # apex up), 1 long along y, flat facets.
+    obj = Obj("prism: equilateral cross-section of side 1, length 1 along y")
+    h = math.sqrt(3) / 2
+    ends = [[(-0.5, y, 0.0), (0.5, y, 0.0), (0.0, y, h)] for y in (-0.5, 0.5)]
+    # Centred on the origin for the outward test, then shifted back so that the base lies on z = 0.
+    c = h / 3
+    e = [[(x, y, z - c) for x, y, z in end] for end in ends]
+    tris = [tuple(e[0]), tuple(e[1])]
+    for k in range(3):
+        a, b = e[0][k], e[0][(k + 1) % 3]
+        d, f = e[1][k], e[1][(k + 1) % 3]
+        tris += [(a, b, f), (a, f, d)]
+    start = len(obj.lines)
+    flat_convex(obj, tris)
+    for i in range(start, len(obj.lines)):
+        if obj.lines[i].startswith("v "):
+            x, y, z = (float(t) for t in obj.lines[i].split()[1:])
+            obj.lines[i] = "v %.6f %.6f %.6f" % (x, y, z + c)
+    obj.write("prism.obj")
+
+
 if __name__ == "__main__":
     ring()
     tumbler()
     cylinder()
     pool_water()
+    gem()
+    prism()

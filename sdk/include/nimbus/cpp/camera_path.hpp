@@ -27,6 +27,7 @@
 #include <nimbus/cpp/rng.hpp>
 #include <nimbus/cpp/sample_record.hpp>
 #include <nimbus/cpp/sampling.hpp>
+#include <nimbus/cpp/spectral_path.hpp>
 
 namespace nimbus::sdk {
 
@@ -74,6 +75,7 @@ struct PathVertex {
   uint32_t segments = 0;  // segments of the path up to this vertex
   float time = 0;         // the path's scene time (0 when nothing moves)
   float time_u = 0;       // the uniform number it was drawn from: the share of the exposure before it
+  float lambda = 0;       // the path's wavelength (nm) after a dispersive vertex; 0 while RGB
 };
 
 // nimbus.pt's estimator: power-heuristic MIS between BSDF and light sampling, nothing else.
@@ -126,6 +128,8 @@ class CameraPathIntegrator : public Integrator {
     // Motion blur (SDK 1.7): a time per camera path when something moves while the shutter is open;
     // otherwise no time is drawn and the path's random numbers are those of a static scene.
     scene_ = TimedScene::of(h, svc_.scene, svc_.camera, svc_.lights);
+    // Dispersion (SDK 1.7): wavelengths only in a scene with a dispersive material.
+    spectral_ = PathSpectrum::needed(host());
     return NIMBUS_OK;
   }
 
@@ -164,6 +168,8 @@ class CameraPathIntegrator : public Integrator {
  protected:
   // The scene as camera paths see it (timed when something moves while the shutter is open).
   const TimedScene &timed_scene() const { return scene_; }
+  // The host's spectral service when the scene disperses light, else null.
+  const nimbus_host_spectral_v1_t *spectral() const { return spectral_; }
 
   // The random-number stream of camera samples: derive(pixel, iteration, kStreamCamera).
   static constexpr uint64_t kStreamCamera = 0;
@@ -186,6 +192,7 @@ class CameraPathIntegrator : public Integrator {
     if (cam_weight == 0) return;
 
     Rgb beta(cam_weight);
+    PathSpectrum spectrum(h, spectral_, svc_.bsdf);  // RGB until a dispersive vertex
     bool specular = true;  // the previous bounce was delta (or there was none): no MIS on hits
     // The albedo element takes the first non-specular surface; no host call when nobody asked for it.
     bool albedo_done = ids().albedo < 0;
@@ -197,7 +204,7 @@ class CameraPathIntegrator : public Integrator {
       scene_.intersect(h, ctx, ray, time, hit);
       const Vec3f dir = Vec3f::load(ray.dir);
       if (hit.geom_id == NIMBUS_NONE) {
-        add_infinite(rec, beta, prev, dir, specular, prev_pdf, segments, path);
+        add_infinite(rec, beta, spectrum, prev, dir, specular, prev_pdf, segments, path);
         break;
       }
       nimbus_interaction_t ix;
@@ -213,7 +220,7 @@ class CameraPathIntegrator : public Integrator {
         float le[3], wo_arr[3];
         wo.store(wo_arr);
         svc_.lights->eval_emitted(h, &ix, wo_arr, le);
-        const Rgb Le = Rgb::load(le);
+        const Rgb Le = spectrum.light(Rgb::load(le));
         if (!is_black(Le)) {
           LightHit lh{ix.light_id,        specular, prev_pdf, 0,       Vec3f::load(ix.p),
                       Vec3f::load(ix.ng), wo,       &prev,    segments};
@@ -226,6 +233,8 @@ class CameraPathIntegrator : public Integrator {
       }
 
       const nimbus_lobe_t lobes = svc_.bsdf->lobes(h, &ix);
+      spectrum.disperse(
+          lobes, [&] { return next_uniform(rng); }, beta);
       const bool smooth_only = !(lobes & (NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY));
       if (!albedo_done && !smooth_only) {
         float a[3], wo_arr[3];
@@ -234,16 +243,16 @@ class CameraPathIntegrator : public Integrator {
         rec.albedo = beta / cam_weight * Rgb::load(a);
         albedo_done = true;
       }
-      path.vertex(PathVertex{&ctx, &ix, wo, lobes, beta, segments, time, time_u}, rec);
+      path.vertex(PathVertex{&ctx, &ix, wo, lobes, beta, segments, time, time_u, spectrum.lambda()}, rec);
       if (segments >= max_depth_) break;
 
-      if (!smooth_only) direct_light(ctx, ix, wo, time, rng, beta, segments + 1, rec, path);
+      if (!smooth_only) direct_light(ctx, ix, wo, time, spectrum, rng, beta, segments + 1, rec, path);
 
       // Continue the path by sampling the BSDF.
       float wo_arr[3], u[3] = {next_uniform(rng), next_uniform(rng), next_uniform(rng)};
       wo.store(wo_arr);
       nimbus_bsdf_sample_t bs;
-      svc_.bsdf->sample(h, &ix, wo_arr, u, NIMBUS_MODE_RADIANCE, &bs);
+      spectrum.sample(&ix, wo_arr, u, NIMBUS_MODE_RADIANCE, &bs);
       if (!(bs.pdf > 0)) break;
       const Vec3f wi = Vec3f::load(bs.wi);
       path.scatter(ix, wi, bs, segments);
@@ -265,15 +274,16 @@ class CameraPathIntegrator : public Integrator {
  private:
   // Radiance from infinite lights along an escaped ray, weighted by the extension.
   template <class Path>
-  void add_infinite(Record &rec, const Rgb &beta, const nimbus_interaction_t &prev, const Vec3f &dir,
-                    bool specular, float prev_pdf, uint32_t segments, Path &path) const {
+  void add_infinite(Record &rec, const Rgb &beta, const PathSpectrum &spectrum,
+                    const nimbus_interaction_t &prev, const Vec3f &dir, bool specular, float prev_pdf,
+                    uint32_t segments, Path &path) const {
     const nimbus_host_t *h = host().get();
     float d[3];
     dir.store(d);
     for (uint32_t l : infinite_) {
       float le[3];
       svc_.lights->eval_infinite(h, l, d, le);
-      const Rgb Le = Rgb::load(le);
+      const Rgb Le = spectrum.light(Rgb::load(le));
       if (is_black(Le)) continue;
       LightHit lh{l, specular, prev_pdf, 0, Vec3f(), Vec3f(), -dir, &prev, segments};
       if (!specular)
@@ -287,8 +297,8 @@ class CameraPathIntegrator : public Integrator {
   // `segments` = length of the path it completes.
   template <class Path>
   void direct_light(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix, const Vec3f &wo,
-                    float time, nimbus_rng_t &rng, const Rgb &beta, uint32_t segments, Record &rec,
-                    Path &path) const {
+                    float time, const PathSpectrum &spectrum, nimbus_rng_t &rng, const Rgb &beta,
+                    uint32_t segments, Record &rec, Path &path) const {
     const nimbus_host_t *h = host().get();
     const float u_pick = next_uniform(rng);
     const float u_light[2] = {next_uniform(rng), next_uniform(rng)};
@@ -312,12 +322,12 @@ class CameraPathIntegrator : public Integrator {
     nimbus_light_incident_t ls;
     scene_.sample_incident(h, light, ix, u_light, time, ls);
     if (!(ls.pdf > 0)) return;
-    const Rgb Li = Rgb::load(ls.L);
+    const Rgb Li = spectrum.light(Rgb::load(ls.L));
     if (is_black(Li)) return;
     float wo_arr[3], f[3], bsdf_pdf = 0, bsdf_pdf_rev = 0;
     wo.store(wo_arr);
-    svc_.bsdf->eval(h, &ix, wo_arr, ls.wi, NIMBUS_MODE_RADIANCE, f, &bsdf_pdf,
-                    Path::kReversePdfs ? &bsdf_pdf_rev : nullptr);
+    spectrum.eval(&ix, wo_arr, ls.wi, NIMBUS_MODE_RADIANCE, f, &bsdf_pdf,
+                  Path::kReversePdfs ? &bsdf_pdf_rev : nullptr);
     const Vec3f wi = Vec3f::load(ls.wi);
     const Rgb contrib = Rgb::load(f) * std::abs(dot(wi, Vec3f::load(ix.ns)));
     if (is_black(contrib)) return;
@@ -325,7 +335,8 @@ class CameraPathIntegrator : public Integrator {
     svc_.scene->spawn_ray_to(h, &ix, ls.p, &shadow);
     if (ls.flags & NIMBUS_LIGHT_INFINITE) shadow.tfar = kInfinity;
     if (scene_.occluded(h, ctx, shadow, time)) return;
-    outcome = luminance(beta * contrib * Li) / ls.pdf;
+    outcome =
+        std::abs(luminance(beta * contrib * Li)) / ls.pdf;  // a wavelength's beta may have a negative channel
     const bool delta = (ls.flags & (NIMBUS_LIGHT_DELTA_POSITION | NIMBUS_LIGHT_DELTA_DIRECTION)) != 0;
     const float light_pdf = pmf * ls.pdf;
     const PathWeight w = path.nee(
@@ -354,6 +365,7 @@ class CameraPathIntegrator : public Integrator {
   LightSelection selection_;
   uint32_t max_depth_ = 16;
   TimedScene scene_;  // at a time per camera path when something moves while the shutter is open
+  const nimbus_host_spectral_v1_t *spectral_ = nullptr;  // null unless the scene disperses light
   std::vector<uint32_t> infinite_;
   std::vector<uint32_t> light_group_;  // LightMix group of each light
   std::vector<nimbus_light_info_t> light_info_;

@@ -1,4 +1,6 @@
-// Time in the solver (spec 7.1). Photons carry a scene time only when geometry or lights move while the
+// Which photons a lookup merges by time (spec 7.1) and wavelength (spec 7.2).
+//
+// Time. Photons carry a scene time only when geometry or lights move while the
 // shutter is open; a moving camera alone needs none, since photons live in world space.
 //
 // Times are compared in the shutter's own coordinate u = G(t), the share of the exposure before t: the
@@ -9,6 +11,11 @@
 // shutter is exact at any h; the spec's window shifted inside the shutter integrates to 1 over u_p only
 // and leaves a bias at the shutter's ends that falls only as fast as h. h = (1/8) j^((alpha-1)/2) at pass
 // j shrinks with the merge radius.
+//
+// Wavelength. A photon past a dispersive vertex carries its wavelength; a camera path past one merges
+// such photons within h_lambda = 10 nm j^((alpha-1)/2) of its own (merging.cpp), mirrored at 360 and
+// 830 nm. The spec's MIS factor 2 h_lambda p(lambda) for that case is left at 1: any factor shared by
+// every technique's weight keeps the weights a partition of unity, so the image stays unbiased.
 #pragma once
 
 #include <nimbus/nimbus.hpp>
@@ -20,19 +27,24 @@
 
 namespace nimbus::caustics {
 
-// The photon times one lookup accepts, in shutter coordinates.
-struct TimeWindow {
-  bool timed = false;
-  float center = 0, half = 0.5f;
-  float kernel = 1;  // 1/(2h): the kernel's factor in time
-  float rho = 1;     // 2h: the share of photon times it accepts, the merge density's factor
-  // The kernel's weight of a photon at u (0, 1 or 2 times `kernel`; 1 when untimed).
-  float weight(float u) const {
-    if (!timed) return 1;
-    const int n = int(std::abs(u - center) < half) + int(u + center < half) + int(2 - u - center < half);
+// The photons one lookup accepts by a coordinate x in [lo, hi] (time as a share of the exposure, or
+// wavelength): those within `half` of `center`, and their mirror images in lo and hi, each weighted by
+// the kernel 1/(2 half). Mirrored, the kernel is symmetric and integrates to 1 over the centre for every
+// photon, so averages over the whole range come out exact.
+struct MirroredWindow {
+  bool active = false;
+  float lo = 0, hi = 1, center = 0, half = 0.5f;
+  float kernel = 1;  // 1/(2 half)
+  float rho = 1;     // the share of photons it accepts: the merge density's factor in MIS
+  // The kernel's weight of a photon at x (0, 1 or 2 times `kernel`; 1 when inactive).
+  float weight(float x) const {
+    if (!active) return 1;
+    const int n = int(std::abs(x - center) < half) + int((x - lo) + (center - lo) < half) +
+                  int((hi - x) + (hi - center) < half);
     return float(n) * kernel;
   }
 };
+using TimeWindow = MirroredWindow;
 
 // Whether photons need times, and the window of each pass.
 class PhotonClock {
@@ -53,10 +65,14 @@ class PhotonClock {
   static float half_width(uint32_t pass) {
     return 0.125f * std::pow(float(std::max(pass, 1u)), (kRadiusAlpha - 1) / 2);
   }
+  // Half the wavelength window's width (nm) at photon pass j (1-based).
+  static float lambda_half_width(uint32_t pass) {
+    return 10.0f * std::pow(float(std::max(pass, 1u)), (kRadiusAlpha - 1) / 2);
+  }
   // The window of a lookup by a camera path whose time came from u_c; h: half_width of the map's pass.
   TimeWindow window(float u_c, float h) const {
     if (!timed_ || !matched_) return {};
-    return {true, u_c, h, 1 / (2 * h), 2 * h};
+    return {true, 0, 1, u_c, h, 1 / (2 * h), 2 * h};
   }
 
  private:
