@@ -115,9 +115,15 @@ const RgbUpliftTable &srgb_uplift_table() {
 
 float uplift(const Vec3f &rgb, float lambda) {
   if (!(lambda >= kLambdaMin && lambda <= kLambdaMax)) return 0;
-  // lookup_emission gives a grey exactly too (scale 2g times the constant 1/2), but needs the table.
+  // Greys are exact without the table.
   if (rgb.x == rgb.y && rgb.y == rgb.z) return std::isfinite(rgb.x) ? std::max(rgb.x, 0.0f) : 0.0f;
-  return srgb_uplift_table().lookup_emission(rgb)(lambda);
+  // The largest channel m times the bounded spectrum of rgb / m, which lies in [0, 1]: homogeneous, and
+  // never above m at any wavelength, so an albedo below 1 stays below 1 at every wavelength (a factor of
+  // 2 m, as for emission, would let a saturated albedo reflect more than it receives at some).
+  const Vec3f c = max(rgb, Vec3f(0));
+  const float m = max_component(c);
+  if (!(m > 0) || !std::isfinite(m)) return 0;
+  return m * srgb_uplift_table().lookup(c / m)(lambda);
 }
 
 }  // namespace nimbus

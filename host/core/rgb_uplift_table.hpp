@@ -55,8 +55,9 @@ class RgbUpliftTable {
 // The table at the default resolution, built on first use (thread-safe) and kept for the process.
 const RgbUpliftTable &srgb_uplift_table();
 
-// The value at lambda (nm) of the smooth spectrum of linear rgb of any magnitude: the table's emission
-// uplift, so homogeneous (uplift(k rgb) = k uplift(rgb): a BSDF value albedo / pi gives uplift(albedo) / pi).
+// The value at lambda (nm) of the smooth spectrum of linear rgb of any magnitude: its largest channel m
+// times the bounded spectrum of rgb / m, so homogeneous (uplift(k rgb) = k uplift(rgb): a BSDF value
+// albedo / pi gives uplift(albedo) / pi) and never above m (an albedo stays below 1 at every wavelength).
 // Negative channels count as 0; greys are exact and never build the table; 0 outside the visible range.
 float uplift(const Vec3f &rgb, float lambda);
 

@@ -123,13 +123,24 @@ TEST(SpectralService, UpliftIsHomogeneous) {
     for (float k : {1e-3f, 0.37f, 2.5f, 1e3f})
       for (float lambda : {380.0f, 450.0f, 520.0f, 600.0f, 700.0f, 820.0f}) {
         const float a = h.uplift(c * k, lambda), b = k * h.uplift(c, lambda);
-        // k c / (2 max(k c)) equals c / (2 max c) to an ulp or two, which the table's trilinear
+        // k c / max(k c) equals c / max c to an ulp or two, which the table's trilinear
         // interpolation turns into a relative change of a few 1e-7.
         EXPECT_NEAR(a, b, 2e-6f * b + 1e-12f)
             << c.x << " " << c.y << " " << c.z << " k " << k << " at " << lambda;
       }
   // Negative channels count as 0.
   EXPECT_EQ(h.uplift({0.5f, -1, 0.2f}, 500), h.uplift({0.5f, 0, 0.2f}, 500));
+}
+
+// An albedo reflects at no wavelength more than its largest channel: saturated colours included, so a
+// spectral path's throughput never grows at a surface that reflects less than it receives in RGB.
+TEST(SpectralService, UpliftNeverExceedsTheLargestChannel) {
+  const SpectralHarness h(kPlain);
+  for (const Vec3f &c : {Vec3f(0.9f, 0.02f, 0.02f), Vec3f(0.02f, 0.9f, 0.02f), Vec3f(0.02f, 0.02f, 0.9f),
+                         Vec3f(0.95f, 0.9f, 0.01f), Vec3f(1, 0, 1), Vec3f(0.5f, 0.25f, 0.1f)})
+    for (float lambda = kLambdaMin; lambda <= kLambdaMax; lambda += 1)
+      EXPECT_LE(h.uplift(c, lambda), max_component(c) * (1 + 1e-6f))
+          << c.x << " " << c.y << " " << c.z << " at " << lambda;
 }
 
 // E[uplift(c)(lambda) w(lambda) / p(lambda)] = c with lambda ~ p: what every spectral path estimates.
