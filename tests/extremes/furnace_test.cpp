@@ -115,7 +115,7 @@ objects:
 environment: { color: [1, 1, 1] }
 )";
     SCOPED_TRACE("ior " + num(g.ior) + ", roughness " + num(g.roughness));
-    NIMBUS_SKIP_UNLESS_PARSES(scene, "a uniform environment");
+    NIMBUS_ASSERT_PARSES(scene, "a uniform environment");
     SceneRenderer r;
     const Rendered img = render(r, scene, pt(iterations_for(g.ior), 25));
     ASSERT_TRUE(img.ok);

@@ -99,7 +99,7 @@ lights:
       intensity: [1e4, 1e4, 1e4] }
 )";
     SCOPED_TRACE(sun);
-    NIMBUS_SKIP_UNLESS_PARSES(scene, "sun and spot lights");
+    NIMBUS_ASSERT_PARSES(scene, "sun and spot lights");
     SceneRenderer r;
     const Rendered img = render(r, scene, pt(16, 49));
     ASSERT_TRUE(img.ok);

@@ -138,7 +138,7 @@ environment: { color: [0.3, 0.35, 0.5] }
 }
 
 TEST(ScaleDistantLights, ImageMatchesUnitScale) {
-  NIMBUS_SKIP_UNLESS_PARSES(open_scene(1), "sun and environment lights");
+  NIMBUS_ASSERT_PARSES(open_scene(1), "sun and environment lights");
   SceneRenderer r;
   const Rendered unit = render(r, open_scene(1), pt(32, 1));
   ASSERT_TRUE(unit.ok);
