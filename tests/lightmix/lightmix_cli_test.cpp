@@ -1,9 +1,12 @@
-// `nimbus lightmix` end to end: the files it writes, the metadata it keeps and adds, its errors, and a
-// real LightMix render recombined at scale 1 coming back unchanged.
+// `nimbus lightmix` end to end: the files it writes, the metadata it keeps and adds, its errors, a real
+// LightMix render recombined at scale 1 coming back unchanged, and real nimbus.pt and nimbus.lt renders
+// whose layers sum to beauty and relight by gains other than 1.
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "e2e_support.hpp"
 #include "lightmix_fixture.hpp"
@@ -114,6 +117,55 @@ TEST(LightMixCli, RealRenderRecombinedAtScaleOneIsUnchanged) {
   }
   EXPECT_EQ(meta_number(*b, "nimbus:iterations"), std::optional<double>(2));
 }
+
+// A room lit by a point light (group key) and an area lamp (group fill), rendered by `integrator` with
+// the LightMix layers: beauty is the layers' sum, and relighting with key x2.5, fill x0 (tinted) gives
+// 2.5 key, per pixel and channel, to float rounding (1e-5 relative: a few additions of positive terms).
+void expect_layers_sum_and_relight(const std::string &integrator) {
+  TestDir dir;
+  const std::string yaml = dir.file("room.yaml"), exr = dir.file("room.exr"), out = dir.file("relit.exr");
+  std::ofstream(yaml)
+      << "render: { resolution: [24, 16], max_depth: 4 }\n"
+         "camera: { position: [0, -3, 1], look_at: [0, 0, 0.8], up: [0, 0, 1], fov: 60 }\n"
+         "materials:\n  white: { type: diffuse, albedo: [0.7, 0.6, 0.5] }\n"
+         "  lamp: { type: diffuse, albedo: 0 }\n"
+         "objects:\n  - { shape: rectangle, size: [6, 6], material: white }\n"
+         "  - { shape: rectangle, size: [6, 3], material: white, transform: { rotate: [90, 0, 0], "
+         "translate: [0, 2, 1.5] } }\n"
+         "  - { shape: rectangle, size: [0.6, 0.6], material: lamp, emission: { radiance: [8, 9, 10] }, "
+         "group: fill, transform: { rotate: [180, 0, 0], translate: [0.8, 0, 2.5] } }\n"
+         "lights:\n  - { type: point, position: [-0.7, -0.5, 1.6], intensity: [3, 2, 1], group: key }\n";
+  ProcessResult r = run_nimbus({"render", yaml, "-o", exr, "-q", "--iterations", "4", "--integrator",
+                                integrator, "--elements", "lightmix"},
+                               dir);
+  ASSERT_TRUE(exited_with(r, 0)) << r.describe();
+  r = run_nimbus({"lightmix", exr, "--set", "key=2.5", "--set", "fill=0,1,0.5,0.2", "-o", out}, dir);
+  ASSERT_TRUE(exited_with(r, 0)) << r.describe();
+  const auto img = read_exr(exr), relit = read_exr(out);
+  ASSERT_TRUE(img && relit);
+  double key_light = 0, fill_light = 0;
+  for (const char *c : {"R", "G", "B"}) {
+    const std::vector<float> &beauty = plane(*img, c), &key = plane(*img, std::string("lightmix.key.") + c),
+                             &fill = plane(*img, std::string("lightmix.fill.") + c),
+                             &mixed = plane(*relit, c);
+    ASSERT_EQ(key.size(), beauty.size());
+    ASSERT_EQ(fill.size(), beauty.size());
+    ASSERT_EQ(mixed.size(), beauty.size());
+    for (size_t i = 0; i < beauty.size(); ++i) {
+      EXPECT_NEAR(beauty[i], key[i] + fill[i], 1e-5 * std::abs(beauty[i]) + 1e-7)
+          << integrator << " " << c << i;
+      EXPECT_NEAR(mixed[i], 2.5 * key[i], 1e-5 * std::abs(2.5 * key[i]) + 1e-7)
+          << integrator << " " << c << i;
+      key_light += key[i], fill_light += fill[i];
+    }
+  }
+  // Both groups light the room, so neither check holds by a layer being empty.
+  EXPECT_GT(key_light, 0.1 * fill_light) << integrator;
+  EXPECT_GT(fill_light, 0.1 * key_light) << integrator;
+}
+
+TEST(LightMixCli, PathTracerLayersSumToBeautyAndRelight) { expect_layers_sum_and_relight("pt"); }
+TEST(LightMixCli, LightTracerLayersSumToBeautyAndRelight) { expect_layers_sum_and_relight("lt"); }
 
 }  // namespace
 }  // namespace nimbus::e2e
