@@ -1,5 +1,6 @@
-// A fixed seed gives the same image at any thread count (random numbers derive from seed, pixel,
-// iteration and dimension, never from thread identity or timing); a different seed gives another image.
+// A fixed seed gives the same image at any thread count, path and light tracer alike (random numbers
+// derive from seed, pixel or path, iteration and dimension, never from thread identity or timing); a
+// different seed gives another image.
 // Pixels are compared as read back, not as file bytes, because the header records the render time.
 #include <gtest/gtest.h>
 
@@ -15,12 +16,25 @@ struct Rendered {
   std::vector<float> rgb[3];
 };
 
-// Renders box.yaml with `--threads threads --seed seed`; nullopt (with a failure recorded) if it fails.
-std::optional<Rendered> render_box(const TestDir &dir, int threads, int seed) {
-  const std::string exr = dir.file("t" + std::to_string(threads) + "-s" + std::to_string(seed) + ".exr");
-  const ProcessResult r = run_nimbus({"render", scene("box.yaml"), "-o", exr, "-q", "--iterations", "8",
-                                      "--threads", std::to_string(threads), "--seed", std::to_string(seed)},
-                                     dir);
+// Renders box.yaml with `--threads threads --seed seed` (and `integrator` if given); nullopt (with a
+// failure recorded) if it fails.
+std::optional<Rendered> render_box(const TestDir &dir, int threads, int seed,
+                                   const std::string &integrator = "") {
+  const std::string exr =
+      dir.file(integrator + "t" + std::to_string(threads) + "-s" + std::to_string(seed) + ".exr");
+  std::vector<std::string> args = {"render",
+                                   scene("box.yaml"),
+                                   "-o",
+                                   exr,
+                                   "-q",
+                                   "--iterations",
+                                   "8",
+                                   "--threads",
+                                   std::to_string(threads),
+                                   "--seed",
+                                   std::to_string(seed)};
+  if (!integrator.empty()) args.insert(args.end(), {"--integrator", integrator});
+  const ProcessResult r = run_nimbus(args, dir);
   if (!exited_with(r, 0)) {
     ADD_FAILURE() << r.describe();
     return std::nullopt;
@@ -58,6 +72,18 @@ TEST(Determinism, SameSeedIsBitIdenticalAcrossThreadCounts) {
     ASSERT_EQ(two->rgb[c].size(), one->rgb[c].size());
   }
   EXPECT_EQ(differing_pixels(*one, *two), 0u);
+}
+
+// The light tracer splats into pixels other threads' paths also reach: still the same image at any thread
+// count, and another with another seed.
+TEST(Determinism, LightTracerIsBitIdenticalAcrossThreadCounts) {
+  TestDir dir;
+  const auto one = render_box(dir, 1, 5, "lt"), two = render_box(dir, 2, 5, "lt"),
+             other = render_box(dir, 2, 6, "lt");
+  ASSERT_TRUE(one && two && other);
+  ASSERT_EQ(one->rgb[0].size(), 64u * 48u);
+  EXPECT_EQ(differing_pixels(*one, *two), 0u);
+  EXPECT_GT(differing_pixels(*two, *other), one->rgb[0].size() / 2);
 }
 
 TEST(Determinism, DifferentSeedGivesDifferentImage) {
