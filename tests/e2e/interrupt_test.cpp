@@ -6,6 +6,8 @@
 #include <cmath>
 #include <memory>
 #include <regex>
+#include <utility>
+#include <vector>
 
 #include "e2e_support.hpp"
 
@@ -19,10 +21,14 @@ bool shows_progress(const std::string &err) { return err.find("iteration ") != s
 
 // Starts a render that would take minutes and waits until it reports an iteration, so the SIGINT handler
 // is installed and the film holds at least one iteration.
-std::unique_ptr<Process> start_long_render(const TestDir &dir, const std::string &exr) {
-  auto p = std::make_unique<Process>(
-      nimbus_argv({"render", scene("box.yaml"), "-o", exr, "--iterations", std::to_string(kManyIterations)}),
-      dir.path());
+// scene_path: the scene to render; extra: more arguments (e.g. the integrator).
+std::unique_ptr<Process> start_long_render(const TestDir &dir, const std::string &exr,
+                                           const std::string &scene_path = scene("box.yaml"),
+                                           const std::vector<std::string> &extra = {}) {
+  std::vector<std::string> args = {"render", scene_path,     "-o",
+                                   exr,      "--iterations", std::to_string(kManyIterations)};
+  args.insert(args.end(), extra.begin(), extra.end());
+  auto p = std::make_unique<Process>(nimbus_argv(args), dir.path());
   // Generous: under the sanitizers start-up alone takes seconds.
   EXPECT_TRUE(p->wait_for_stderr(shows_progress, std::chrono::seconds(60))) << "no progress reported";
   return p;
@@ -59,6 +65,29 @@ TEST(Interrupt, CtrlCFinishesTheIterationAndWritesCompleteFiles) {
     for (float v : px) ASSERT_TRUE(std::isfinite(v)) << c;
   }
   EXPECT_EQ(dir.entries(), (std::vector<std::string>{"long.exr", "long.exr.ckpt", "long.png"}));
+}
+
+// The same with the light tracer (splats from every thread) and with the caustics solver between photon
+// passes (a scene whose point light shines through glass): a complete, finite image and exit 130.
+TEST(Interrupt, CtrlCStopsTheLightTracerAndTheCausticsSolverCleanly) {
+  const std::string sphere_point = std::string(NIMBUS_SOURCE_DIR) + "/scenes/caustics/sphere-point.yaml";
+  for (const auto &[path, integrator] :
+       {std::pair{scene("box.yaml"), std::string("lt")}, std::pair{sphere_point, std::string("caustics")}}) {
+    TestDir dir;
+    const std::string exr = dir.file("long.exr");
+    auto p = start_long_render(dir, exr, path, {"--integrator", integrator});
+    p->send_signal(SIGINT);
+    const ProcessResult r = p->wait(std::chrono::seconds(120));
+    ASSERT_TRUE(exited_with(r, 130)) << integrator << ": " << r.describe();
+    const auto img = read_exr(exr);
+    ASSERT_TRUE(img) << integrator;
+    EXPECT_EQ(meta_string(*img, "nimbus:stopped_by"), std::optional<std::string>("cancel")) << integrator;
+    EXPECT_EQ(meta_string(*img, "nimbus:integrator"), std::optional<std::string>("nimbus." + integrator));
+    EXPECT_GE(meta_number(*img, "nimbus:iterations").value_or(0), 1) << integrator;
+    for (const char *c : {"R", "G", "B"})
+      for (float v : plane(*img, c)) ASSERT_TRUE(std::isfinite(v)) << integrator << " " << c;
+    EXPECT_EQ(dir.temporaries(), std::vector<std::string>{}) << integrator;
+  }
 }
 
 TEST(Interrupt, EarlierOutputIsReplacedWholeNeverTruncated) {
