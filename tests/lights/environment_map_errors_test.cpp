@@ -1,0 +1,49 @@
+// A damaged environment map is an error naming the file and the reason, never a crash or a black sky:
+// a file that is not an image, an EXR cut off in its pixel data, and a missing file.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "lights/environment_map_fixture.hpp"
+#include "lights/light_set.hpp"
+
+namespace nimbus {
+namespace {
+
+// The error load_environment_map gives for `path` (the test fails if it loads).
+std::string load_error(const std::string &path) {
+  auto env = load_environment_map(path);
+  EXPECT_FALSE(env.ok()) << path << " loaded";
+  return env.ok() ? std::string() : env.error().message;
+}
+
+void expect_names_path_and_reason(const std::string &message, const std::string &path) {
+  EXPECT_EQ(message.rfind(path + ": cannot read environment map: ", 0), 0u) << message;
+  EXPECT_GT(message.size(), path.size() + 35) << "a reason after the path: " << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+}
+
+TEST(EnvironmentMapErrors, NotAnImage) {
+  const std::string path = (std::filesystem::temp_directory_path() / "nimbus_env_garbage.exr").string();
+  std::ofstream(path) << "this is not an OpenEXR file\n";
+  expect_names_path_and_reason(load_error(path), path);
+  std::filesystem::remove(path);
+}
+
+TEST(EnvironmentMapErrors, TruncatedPixelData) {
+  const std::string path = testing::write_environment_map("nimbus_env_truncated.exr");
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) / 2);
+  expect_names_path_and_reason(load_error(path), path);
+  std::filesystem::remove(path);
+}
+
+TEST(EnvironmentMapErrors, MissingFile) {
+  const std::string path = (std::filesystem::temp_directory_path() / "nimbus_env_missing.exr").string();
+  std::filesystem::remove(path);
+  expect_names_path_and_reason(load_error(path), path);
+}
+
+}  // namespace
+}  // namespace nimbus
