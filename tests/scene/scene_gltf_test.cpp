@@ -236,6 +236,18 @@ TEST(SceneGltfErrors, MalformedFiles) {
   const std::string bad_index = dir.write("index.gltf", quad_gltf(embedded(quad_buffer(7))));
   EXPECT_TRUE(fails_at(object_with(bad_index, ", material: white"), 4, 26, "objects[0].file",
                        "mesh 'quad': index 7 is out of range: the primitive has 4 vertices"));
+  // Accessors that reach past the end of their buffer view (positions: 40 VEC3s in a 128-byte view), or
+  // whose offset lies past it (uvs at byte 400): an error, never a read past the buffer.
+  std::string long_accessor = quad_gltf(embedded());
+  long_accessor.replace(long_accessor.find(R"("count": 4, "type": "VEC3", "min")"), 10, R"("count": 40)");
+  const std::string past_end = dir.write("past_end.gltf", long_accessor);
+  EXPECT_TRUE(fails_at(object_with(past_end, ", material: white"), 4, 26, "objects[0].file",
+                       "cannot load mesh '" + past_end + "'"));
+  std::string far_offset = quad_gltf(embedded());
+  far_offset.replace(far_offset.find(R"("byteOffset": 96)"), 16, R"("byteOffset": 400)");
+  const std::string offset_past = dir.write("offset_past.gltf", far_offset);
+  EXPECT_TRUE(fails_at(object_with(offset_past, ", material: white"), 4, 26, "objects[0].file",
+                       "cannot load mesh '" + offset_past + "'"));
   const std::string missing = (dir.path() / "none.glb").string();
   EXPECT_TRUE(fails_at(object_with(missing, ", material: white"), 4, 26, "objects[0].file",
                        "cannot load mesh '" + missing + "': No such file or directory"));
