@@ -56,7 +56,8 @@ constexpr const char *kHelp =
     "  --checkpoint-every S   seconds between checkpoints (default 300; 0: only when the render stops)\n"
     "  --resume               continue from the checkpoint; --iterations is then the total, old + new\n"
     "\n"
-    "Ctrl-C stops after the current iteration and writes the image so far (exit code 130).\n"
+    "Ctrl-C (or SIGTERM) stops after the current iteration and writes the image so far (exit code 130;\n"
+    "143 for SIGTERM); a second one stops at once.\n"
     "\n"
     "Checkpoints hold the exact sums of every element: the render writes one every --checkpoint-every\n"
     "seconds and whenever it stops (finished, time budget, Ctrl-C), and keeps it, so an interrupted or\n"
@@ -64,12 +65,16 @@ constexpr const char *kHelp =
     "bit where an uninterrupted render of the same total iterations would.\n";
 
 std::atomic<bool> g_cancel{false};
+std::atomic<int> g_stop_signal{0};  // the signal that asked the render to stop (SIGINT or SIGTERM)
 
-extern "C" void on_sigint(int) {
+// Ctrl-C, or a SIGTERM from a scheduler or `kill`: finish the iteration and write the files.
+extern "C" void on_stop_signal(int sig) {
+  int none = 0;
+  g_stop_signal.compare_exchange_strong(none, sig);
   if (g_cancel.exchange(true)) {
-    // Second Ctrl-C: the user insists. Restore the default action and re-raise.
-    std::signal(SIGINT, SIG_DFL);
-    std::raise(SIGINT);
+    // The second one: the user (or the scheduler) insists. Restore the default action and re-raise.
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
   }
 }
 
@@ -256,9 +261,10 @@ int render_command(const std::vector<std::string> &argv) {
   registry.discover(PluginRegistry::default_search_paths(executable_path()), discovery_host.host());
 
   struct sigaction sa {};
-  sa.sa_handler = on_sigint;
+  sa.sa_handler = on_stop_signal;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
 
   ProgressDisplay display(stderr, isatty(STDERR_FILENO) != 0, a.quiet);
   auto result = render(
@@ -285,6 +291,8 @@ int render_command(const std::vector<std::string> &argv) {
   if (r.nonfinite_samples)
     std::fprintf(stderr, "nimbus: warning: %llu samples were NaN or infinite and were discarded\n",
                  (unsigned long long)r.nonfinite_samples);
+  // The shell's convention, 128 + the signal: 130 for Ctrl-C, 143 for SIGTERM.
+  if (r.cancelled && g_stop_signal.load() == SIGTERM) return 128 + SIGTERM;
   return r.cancelled ? kExitInterrupted : kExitOk;
 }
 

@@ -1,5 +1,6 @@
-// Ctrl-C: the first SIGINT finishes the current iteration and writes complete files (exit 130); the
-// output file is replaced by rename, so an earlier image at the same path is never left truncated.
+// Ctrl-C: the first SIGINT (or SIGTERM) finishes the current iteration and writes complete files (exit
+// 130, or 143); the output file is replaced by rename, so an earlier image at the same path is never left
+// truncated.
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -64,6 +65,21 @@ TEST(Interrupt, CtrlCFinishesTheIterationAndWritesCompleteFiles) {
     EXPECT_EQ(px.size(), 64u * 48u) << c;
     for (float v : px) ASSERT_TRUE(std::isfinite(v)) << c;
   }
+  EXPECT_EQ(dir.entries(), (std::vector<std::string>{"long.exr", "long.exr.ckpt", "long.png"}));
+}
+
+// SIGTERM (a scheduler's or `kill`'s) stops a render as Ctrl-C does: complete files, exit 128 + 15.
+TEST(Interrupt, SigtermFinishesTheIterationAndWritesCompleteFiles) {
+  TestDir dir;
+  const std::string exr = dir.file("long.exr");
+  auto p = start_long_render(dir, exr);
+  p->send_signal(SIGTERM);
+  const ProcessResult r = p->wait(std::chrono::seconds(120));
+  ASSERT_TRUE(exited_with(r, 143)) << r.describe();
+  const auto img = read_exr(exr);
+  ASSERT_TRUE(img);
+  EXPECT_EQ(meta_string(*img, "nimbus:stopped_by"), std::optional<std::string>("cancel"));
+  EXPECT_GE(meta_number(*img, "nimbus:iterations").value_or(0), 1);
   EXPECT_EQ(dir.entries(), (std::vector<std::string>{"long.exr", "long.exr.ckpt", "long.png"}));
 }
 
