@@ -44,8 +44,8 @@ SharpObject swept_bounds(const SharpObject &rest, const MotionTransform &motion)
   for (size_t i = 0; i < samples; ++i) {
     const Transform m = motion.at(open + (close - open) * float(i) / float(samples - 1));
     for (int c = 0; c < 8; ++c) {
-      const Vec3f q = m.point(Vec3f(c & 1 ? rest.hi.x : rest.lo.x, c & 2 ? rest.hi.y : rest.lo.y,
-                                    c & 4 ? rest.hi.z : rest.lo.z));
+      const Vec3f q = m.point(
+          Vec3f(c & 1 ? rest.hi.x : rest.lo.x, c & 2 ? rest.hi.y : rest.lo.y, c & 4 ? rest.hi.z : rest.lo.z));
       if (i > 0) pad = std::max(pad, length(q - previous[c]));
       o.lo = min(o.lo, q), o.hi = max(o.hi, q), previous[c] = q;
     }

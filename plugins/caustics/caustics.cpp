@@ -85,6 +85,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     importance_ = pass_importance_ = ImportanceMap(scene_center_, scene_radius_);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
     merge_.clock = PhotonClock::of(h, services().camera, options_.times_matched);
+    merge_.spectral = spectral();
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
     const bool caustics_can_form = emitters_.emits_photons() && !emitters_.targets().empty();
     // Light selection (spec 6.1): the prior from where the camera is, adapted at every photon pass.
@@ -153,7 +154,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     map_active_ = schedule_.map_active();
     merge_.radius_per_length = radius_per_length(theta_pix_, schedule_.passes());
     merge_.time_half_width = PhotonClock::half_width(schedule_.passes());
-    merge_.spectral = spectral(),
     merge_.lambda_half_width = PhotonClock::lambda_half_width(schedule_.passes());
     merge_.lookup_probability = roulette_.probabilities();
     return NIMBUS_OK;

@@ -7,12 +7,11 @@ namespace {
 // What a photon of wavelength lambda_p (0: RGB) with `power` brings to a camera path of wavelength
 // lambda_c (0: RGB), as the camera path's colour state reads it (spec 7.2): an RGB photon uplifted at
 // lambda_c; a photon's value at lambda_p weighed by that wavelength's colour for an RGB camera path; for
-// two wavelengths, the photon only within the pass's window around lambda_c (mirrored at the visible
-// range's ends), times the window's kernel. False when the photon brings nothing.
-bool photon_at_wavelength(const MergeContext &mc, float lambda_p, float lambda_c, Rgb &power) {
+// two wavelengths, the photon only within the lookup's window around lambda_c, times the window's kernel.
+// False when the photon brings nothing.
+bool photon_at_wavelength(const MergeContext &mc, float lambda_p, float lambda_c,
+                          const MirroredWindow &window, Rgb &power) {
   if (lambda_c > 0 && lambda_p > 0) {
-    const float h = mc.lambda_half_width;
-    const MirroredWindow window{true, kLambdaMin, kLambdaMax, lambda_c, h, 1 / (2 * h), 1};
     power = power * window.weight(lambda_p);
   } else if (lambda_c > 0) {
     float rgb[3];
@@ -41,6 +40,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
   float wo_arr[3];
   wo.store(wo_arr);
   const float kernel_norm = 2 / (kPi * r2);
+  const MirroredWindow lambda_window = PhotonClock::lambda_window(lambda, mc.lambda_half_width);
   // Photons on the same flat surface carry the same quantised normal: skip decoding those. Encoded at
   // the first photon found: most lookups find none (query() turns them away first).
   uint32_t ng_code = 0;
@@ -52,7 +52,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     const float in_time = window.active ? window.weight(mc.map->time_of(ph)) : 1.0f;
     if (!(in_time > 0)) return;
     Rgb power = Rgb::load(ph.power);
-    if (mc.spectral && !photon_at_wavelength(mc, mc.map->lambda_of(ph), lambda, power)) return;
+    if (mc.spectral && !photon_at_wavelength(mc, mc.map->lambda_of(ph), lambda, lambda_window, power)) return;
     if (!ng_encoded) ng_code = encode_octahedral(ng), ng_encoded = true;
     if (ph.normal != ng_code && !(dot(decode_octahedral(ph.normal), ng) > 0)) return;
     const Vec3f wp = decode_octahedral(ph.dir);

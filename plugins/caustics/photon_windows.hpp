@@ -23,6 +23,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <nimbus/cpp/spectral.hpp>
+
 #include "schedule.hpp"
 
 namespace nimbus::caustics {
@@ -68,6 +70,12 @@ class PhotonClock {
   // Half the wavelength window's width (nm) at photon pass j (1-based).
   static float lambda_half_width(uint32_t pass) {
     return 10.0f * std::pow(float(std::max(pass, 1u)), (kRadiusAlpha - 1) / 2);
+  }
+  // The wavelength window of a lookup by a camera path of wavelength lambda_c (0: RGB, no window);
+  // h: lambda_half_width of the map's pass.
+  static MirroredWindow lambda_window(float lambda_c, float h) {
+    if (!(lambda_c > 0)) return {};
+    return {true, kLambdaMin, kLambdaMax, lambda_c, h, 1 / (2 * h), 1};
   }
   // The window of a lookup by a camera path whose time came from u_c; h: half_width of the map's pass.
   TimeWindow window(float u_c, float h) const {

@@ -19,8 +19,9 @@ extern "C" {
 #define NIMBUS_LIGHT_INFINITE 4u        /* environment, sun: at infinity, found by missed rays */
 #define NIMBUS_LIGHT_AREA 8u            /* emissive geometry, found by hitting it */
 #define NIMBUS_LIGHT_TWO_SIDED 16u      /* since 1.1: area light emitting from both sides of its surface */
-#define NIMBUS_LIGHT_MOVES 32u          /* since 1.7 (info only): moves while the shutter is open; the bounds
-                                         * and cone cover its whole sweep, and the _at members place it */
+#define NIMBUS_LIGHT_MOVES                                                  \
+  32u /* since 1.7 (info only): moves while the shutter is open; the bounds \
+       * and cone cover its whole sweep, and the _at members place it */
 
 #define NIMBUS_S_TYPE_LIGHT_INFO 16u
 typedef struct nimbus_light_info {
