@@ -22,9 +22,17 @@ Film *half_film(const RunState &run, nimbus_element_t el) {
              : nullptr;
 }
 
-void accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *, nimbus_element_t el, uint32_t x,
+// A write outside the worker's tile is dropped and counted: it would race with the tile's owner.
+bool outside_tile(RunState &run, const nimbus_thread_ctx_t *tc, uint32_t x, uint32_t y) {
+  if (run.in_tile(tc, x, y)) return false;
+  run.outside_tile_writes.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
+void accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, nimbus_element_t el, uint32_t x,
                 uint32_t y, const float *value) {
   RunState &run = run_of(host);
+  if (outside_tile(run, tc, x, y)) return;
   run.film.accumulate(el, x, y, value);
   if (Film *half = half_film(run, el)) half->accumulate(el, x, y, value);
 }
@@ -44,9 +52,10 @@ uint32_t lightmix_group_count(const nimbus_host_t *host) {
   return uint32_t(world_of(host).lights.group_names().size());
 }
 
-void lightmix_accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *, uint32_t group, uint32_t x,
+void lightmix_accumulate(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, uint32_t group, uint32_t x,
                          uint32_t y, const float value[3]) {
   RunState &run = run_of(host);
+  if (outside_tile(run, tc, x, y)) return;
   if (group < run.lightmix_elements.size()) run.film.accumulate(run.lightmix_elements[group], x, y, value);
 }
 

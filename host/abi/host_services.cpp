@@ -9,8 +9,16 @@
 namespace nimbus {
 namespace {
 
-const void *get_service(const nimbus_host_t *, const char *id, uint32_t rev) {
-  return HostServices::find_service(id, rev);
+// A lookup the host cannot answer is remembered, so that the plugin's failure that usually follows can
+// name the service and revision it wanted.
+const void *get_service(const nimbus_host_t *host, const char *id, uint32_t rev) {
+  const void *table = HostServices::find_service(id, rev);
+  RunState *run = host ? static_cast<HostServices *>(host->host_data)->run() : nullptr;
+  if (!table && run) {
+    std::lock_guard lock(run->missing_services_mutex);
+    run->missing_services.push_back(std::string(id ? id : "(null)") + "@" + std::to_string(rev));
+  }
+  return table;
 }
 
 void log_message(const nimbus_host_t *host, nimbus_log_level_t level, const char *plugin_id,

@@ -17,6 +17,7 @@
 
 #include <nimbus/nimbus.hpp>
 
+#include "abi/hook_watch.hpp"
 #include "film/error_estimate.hpp"
 #include "film/film.hpp"
 
@@ -54,6 +55,28 @@ struct RunState {
     for (const RayCounter &c : ray_counters) n += c.rays;
     return n;
   }
+
+  // The tile each worker is rendering (empty between tiles): the film service drops, and counts, writes
+  // outside it, which would race with the worker that owns those pixels.
+  struct alignas(sdk::kCacheLineBytes) WorkerTile {
+    nimbus_tile_t tile{};
+  };
+  std::vector<WorkerTile> worker_tiles;
+  std::atomic<uint64_t> outside_tile_writes{0};
+  bool in_tile(const nimbus_thread_ctx_t *tc, uint32_t x, uint32_t y) const {
+    if (!tc || tc->worker_index >= worker_tiles.size()) return false;
+    const nimbus_tile_t &t = worker_tiles[tc->worker_index].tile;
+    return x >= t.x0 && x < t.x1 && y >= t.y0 && y < t.y1;
+  }
+
+  HookWatch hooks;
+  // Which tiles of the current iteration have started (their sums saved in the undo copy), so that a
+  // failed or rescued iteration can be undone.
+  std::unique_ptr<std::atomic<uint8_t>[]> tile_started;
+
+  // Service lookups the host could not answer, as "id@revision", for the message when a plugin then fails.
+  std::mutex missing_services_mutex;
+  std::vector<std::string> missing_services;
 
   // Statistics plugins add through the progress service (written into the EXR metadata).
   std::mutex stats_mutex;

@@ -288,9 +288,6 @@ int render_command(const std::vector<std::string> &argv) {
     std::fprintf(stderr, "nimbus: resumed from iteration %llu\n", (unsigned long long)r.resumed_from);
   if (!a.quiet && !r.checkpoint_path.empty())
     std::fprintf(stderr, "nimbus: checkpoint %s (continue with --resume)\n", r.checkpoint_path.c_str());
-  if (r.nonfinite_samples)
-    std::fprintf(stderr, "nimbus: warning: %llu samples were NaN or infinite and were discarded\n",
-                 (unsigned long long)r.nonfinite_samples);
   // The shell's convention, 128 + the signal: 130 for Ctrl-C, 143 for SIGTERM.
   if (r.cancelled && g_stop_signal.load() == SIGTERM) return 128 + SIGTERM;
   return r.cancelled ? kExitInterrupted : kExitOk;

@@ -163,6 +163,29 @@ void Film::merge_splats() {
   }
 }
 
+void Film::discard_splats() {
+  for (Element &e : elements_)
+    for (WorkerSplats &w : e.workers)
+      if (w.dirty) {
+        std::fill(w.sum.begin(), w.sum.end(), 0.0);
+        w.dirty = false;
+      }
+}
+
+std::unique_ptr<Film> Film::snapshot() const {
+  auto copy = std::make_unique<Film>(width_, height_);
+  copy->elements_.clear();
+  for (const Element &e : elements_) {
+    copy->elements_.emplace_back(e.name, e.channels, e.flags);
+    copy->elements_.back().active = e.active;
+    copy->elements_.back().sum = e.sum;
+  }
+  copy->requested_ = requested_;
+  copy->iterations_ = iterations_;
+  copy->nonfinite_.store(nonfinite_count());
+  return copy;
+}
+
 bool Film::has_pending_splats() const {
   for (const Element &e : elements_) {
     for (const WorkerSplats &w : e.workers) {

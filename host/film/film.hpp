@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -81,6 +82,11 @@ class Film {
   void set_iterations(uint64_t n) { iterations_ = n; }
   // Splats not yet folded into the sums: a checkpoint taken now would lose them.
   bool has_pending_splats() const;
+  // Drops the splats not yet folded into the sums: those of an iteration a plugin failed in.
+  void discard_splats();
+  // A film with the same elements and sums, without splat buffers: what the output writers read while
+  // the render threads may still write into this one. Main thread, or any thread once no tile starts.
+  std::unique_ptr<Film> snapshot() const;
 
   // ---- checkpoints (main thread, between iterations) ----------------------------------------------
   // The running double sums of element `el` (width * height * channels, channel-interleaved; empty when

@@ -92,20 +92,28 @@ Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &j
   return p;
 }
 
-Status prepare_plugins(const BoundPlugins &p, const RenderJob &job, const World &world,
-                       uint32_t worker_count) {
+Status prepare_plugins(const BoundPlugins &p, const RenderJob &job, const World &world, uint32_t worker_count,
+                       HookWatch &hooks) {
   nimbus_scene_info_t scene_info{};
   scene_info.header = {sizeof(scene_info), NIMBUS_S_TYPE_SCENE_INFO, nullptr};
   scene_info.light_count = world.lights.count();
   scene_info.worker_count = worker_count;
   world.geometry->sphere_center().store(scene_info.scene_center);
   scene_info.scene_radius = world.geometry->sphere_radius();
-  if (nimbus_status_t s = p.ls->prepare(p.sampler.get(), &scene_info); s != NIMBUS_OK)
-    return Error{"light sampler '" + p.sampler.id() + "' failed to prepare: " + status_text(s)};
+  nimbus_status_t s = NIMBUS_OK;
+  {
+    HookScope hook(hooks, p.sampler.id(), "prepare");
+    s = p.ls->prepare(p.sampler.get(), &scene_info);
+  }
+  if (s != NIMBUS_OK)
+    return Error{"light sampler '" + p.sampler.id() + "' failed in prepare: " + status_text(s)};
   if (p.guide.get()) {
     const auto prepare = p.guide_v2 ? p.guide_v2->prepare : p.guide_v1->prepare;
-    if (nimbus_status_t s = prepare(p.guide.get(), &scene_info); s != NIMBUS_OK)
-      return Error{"guide '" + p.guide.id() + "' failed to prepare: " + status_text(s)};
+    {
+      HookScope hook(hooks, p.guide.id(), "prepare");
+      s = prepare(p.guide.get(), &scene_info);
+    }
+    if (s != NIMBUS_OK) return Error{"guide '" + p.guide.id() + "' failed in prepare: " + status_text(s)};
   }
 
   std::vector<nimbus_option_t> opts;
@@ -122,8 +130,12 @@ Status prepare_plugins(const BoundPlugins &p, const RenderJob &job, const World 
   setup.light_sampler_iface = p.ls;
   setup.guide = p.guide.get();
   setup.guide_iface = p.guide_v1;
-  if (nimbus_status_t s = p.it->prepare(p.integrator.get(), &setup); s != NIMBUS_OK)
-    return Error{"integrator '" + p.integrator.id() + "' failed to prepare: " + status_text(s)};
+  {
+    HookScope hook(hooks, p.integrator.id(), "prepare");
+    s = p.it->prepare(p.integrator.get(), &setup);
+  }
+  if (s != NIMBUS_OK)
+    return Error{"integrator '" + p.integrator.id() + "' failed in prepare: " + status_text(s)};
   return Ok{};
 }
 

@@ -5,6 +5,7 @@
 
 #include <nimbus/nimbus.h>
 
+#include "abi/hook_watch.hpp"
 #include "core/expected.hpp"
 #include "loader/plugin_registry.hpp"
 #include "render/render_job.hpp"
@@ -34,8 +35,8 @@ Expected<BoundPlugins> bind_plugins(PluginRegistry &registry, const RenderJob &j
 
 // prepare() of all: the sampler builds its tables for the world, the guide learns the scene's size, then
 // the integrator receives its setup (resolution, options, seed, the sampler and the guide) and registers
-// the film elements it can produce.
+// the film elements it can produce. Each call runs inside a HookScope of `hooks` (for the watchdog).
 Status prepare_plugins(const BoundPlugins &plugins, const RenderJob &job, const World &world,
-                       uint32_t worker_count);
+                       uint32_t worker_count, HookWatch &hooks);
 
 }  // namespace nimbus

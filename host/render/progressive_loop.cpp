@@ -15,9 +15,12 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Every tile of iteration i, in parallel in the run's arena; the first failing status, or NIMBUS_OK.
-nimbus_status_t render_tiles(const BoundPlugins &p, RunState &run, const Tiling &tiling, uint64_t i) {
+// Every tile of iteration i, in parallel in the run's arena; the first failing status, or NIMBUS_OK. Each
+// tile's sums are saved before it starts; once a rescue has begun no tile starts.
+nimbus_status_t render_tiles(const BoundPlugins &p, RunState &run, const Tiling &tiling, IterationUndo &undo,
+                             uint64_t i) {
   std::atomic<nimbus_status_t> tile_status{NIMBUS_OK};
+  for (size_t t = 0; t < tiling.tiles.size(); ++t) run.tile_started[t].store(0, std::memory_order_relaxed);
   run.arena->execute([&] {
     tbb::parallel_for(size_t(0), tiling.tiles.size(), [&](size_t t) {
       const int wi = tbb::this_task_arena::current_thread_index();
@@ -25,13 +28,30 @@ nimbus_status_t render_tiles(const BoundPlugins &p, RunState &run, const Tiling 
           sizeof(nimbus_thread_ctx_t), uint32_t(wi < 0 ? 0 : wi), run.worker_count, 0, nullptr, 0};
       nimbus_tile_t tile = tiling.tiles[t];
       tile.iteration = i;
-      if (nimbus_status_t s = p.it->render_tile(p.integrator.get(), &tc, &tile); s != NIMBUS_OK) {
+      // Saved, then marked started, then the rescue flag read: a rescue that sees the tile unstarted
+      // reads its sums, one that sees it started reads the saved copy (sequentially consistent order).
+      if (run.hooks.rescuing()) return;
+      undo.save(run.film, tile);
+      run.tile_started[t].store(1);
+      if (run.hooks.rescuing()) return;
+      run.worker_tiles[tc.worker_index].tile = tile;
+      const nimbus_status_t s = p.it->render_tile(p.integrator.get(), &tc, &tile);
+      run.worker_tiles[tc.worker_index].tile = {};
+      if (s != NIMBUS_OK) {
         nimbus_status_t expected = NIMBUS_OK;
         tile_status.compare_exchange_strong(expected, s);
       }
     });
   });
   return tile_status.load();
+}
+
+// After a tile failed: the started tiles get their saved sums back and the iteration's splats are
+// dropped, so the film holds the iterations before it, exactly.
+void undo_iteration(RunState &run, const Tiling &tiling, const IterationUndo &undo) {
+  for (size_t t = 0; t < tiling.tiles.size(); ++t)
+    if (run.tile_started[t].load()) undo.restore(run.film, tiling.tiles[t]);
+  run.film.discard_splats();
 }
 
 }  // namespace
@@ -45,7 +65,7 @@ std::string LoopOutcome::stopped_by(const StopRules &stop) const {
 }
 
 LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &p, RunState &run,
-                                 const Tiling &tiling, RenderCheckpoint &checkpoint,
+                                 const Tiling &tiling, IterationUndo &undo, RenderCheckpoint &checkpoint,
                                  const ProgressFn &progress, const MessageFn &message) {
   const StopRules &stop = job.stop;
   Film &film = run.film;
@@ -67,24 +87,42 @@ LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &p, Ru
     checkpoint.save_if_due(film, done, message);
     const uint64_t i = done + 1;
     run.iteration = i;
-    if (nimbus_status_t s = p.it->begin_iteration(p.integrator.get(), i); s != NIMBUS_OK) {
+    const std::string &id = p.integrator.id();
+    nimbus_status_t s = NIMBUS_OK;
+    {
+      HookScope hook(run.hooks, id, "begin_iteration");
+      s = p.it->begin_iteration(p.integrator.get(), i);
+    }
+    if (s != NIMBUS_OK) {
       out.failure = s, out.failure_hook = "begin_iteration";
       break;
     }
-    if (nimbus_status_t s = render_tiles(p, run, tiling, i); s != NIMBUS_OK) {
+    {
+      HookScope hook(run.hooks, id, "render_tile");
+      s = render_tiles(p, run, tiling, undo, i);
+    }
+    if (s != NIMBUS_OK) {
+      undo_iteration(run, tiling, undo);
       out.failure = s, out.failure_hook = "render_tile";
       break;
     }
     film.merge_splats();
     // Optional: a sampler's table may end before end_iteration (kLightSamplerMinSize).
-    if (NIMBUS_HAS_MEMBER(p.ls, nimbus_light_sampler_v1_t, end_iteration) && p.ls->end_iteration)
+    if (NIMBUS_HAS_MEMBER(p.ls, nimbus_light_sampler_v1_t, end_iteration) && p.ls->end_iteration) {
+      HookScope hook(run.hooks, p.sampler.id(), "end_iteration");
       p.ls->end_iteration(p.sampler.get(), i);
-    if (nimbus_status_t s = p.it->end_iteration(p.integrator.get(), i); s != NIMBUS_OK) {
+    }
+    {
+      HookScope hook(run.hooks, id, "end_iteration");
+      s = p.it->end_iteration(p.integrator.get(), i);
+    }
+    // The iteration's samples are all in: they count even when its end_iteration fails.
+    film.end_iteration();
+    out.done = i;
+    if (s != NIMBUS_OK) {
       out.failure = s, out.failure_hook = "end_iteration";
       break;
     }
-    film.end_iteration();
-    out.done = i;
     if (run.error_estimate) {
       run.error_estimate->end_iteration(i);
       if (i % 2 == 0) {
@@ -110,6 +148,7 @@ LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &p, Ru
   // The last checkpoint, while the plugins still hold the state of the last iteration. After a plugin
   // failure the sums hold a partial iteration, so the last periodic checkpoint is kept instead.
   if (out.failure == NIMBUS_OK) out.checkpointed = checkpoint.save_if_behind(film, out.done);
+  HookScope hook(run.hooks, p.integrator.id(), "end_render");
   p.it->end_render(p.integrator.get(),
                    out.failure != NIMBUS_OK ? out.failure : (out.cancelled ? NIMBUS_E_CANCELLED : NIMBUS_OK));
   return out;

@@ -1,7 +1,7 @@
 // The progressive loop: iteration after iteration (begin_iteration, every tile in parallel, splats merged,
 // end_iteration) until the job's stopping rules, cancellation or a plugin failure; checkpoints between
 // iterations and progress after each, and a last checkpoint when it stops. Whatever ends it, end_render is
-// called and the film holds only complete iterations, except after a plugin failure.
+// called and the film holds only complete iterations: an iteration a tile failed in is undone.
 #pragma once
 
 #include <chrono>
@@ -11,6 +11,7 @@
 #include <nimbus/nimbus.h>
 
 #include "abi/run_state.hpp"
+#include "film/iteration_undo.hpp"
 #include "render/bind_plugins.hpp"
 #include "render/render_checkpoint.hpp"
 #include "render/render_job.hpp"
@@ -35,9 +36,9 @@ struct LoopOutcome {
 };
 
 // Renders into run.film (and run.error_estimate when there is one), polling *run.cancel between
-// iterations.
+// iterations. run.tile_started holds one flag per tile of `tiling`; `undo` was made from the set-up film.
 LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &plugins, RunState &run,
-                                 const Tiling &tiling, RenderCheckpoint &checkpoint,
+                                 const Tiling &tiling, IterationUndo &undo, RenderCheckpoint &checkpoint,
                                  const ProgressFn &progress, const MessageFn &message);
 
 }  // namespace nimbus

@@ -1,5 +1,7 @@
 #include "render/render_session.hpp"
 
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <mutex>
 
@@ -12,6 +14,7 @@
 #include "render/render_checkpoint.hpp"
 #include "render/render_outputs.hpp"
 #include "render/tiling.hpp"
+#include "render/watchdog.hpp"
 #include "world/world.hpp"
 
 namespace nimbus {
@@ -35,6 +38,60 @@ RenderFacts facts_of(const RenderJob &job, const BoundPlugins &plugins, RunState
   return f;
 }
 
+// A failing plugin's message, with the services it asked for and this host lacks (usually the cause).
+Error with_missing_services(RunState &run, Error e) {
+  std::lock_guard lock(run.missing_services_mutex);
+  if (run.missing_services.empty()) return e;
+  e.message += "; it asked for service";
+  e.message += run.missing_services.size() > 1 ? "s " : " ";
+  for (size_t i = 0; i < run.missing_services.size(); ++i)
+    e.message += (i ? ", " : "") + run.missing_services[i];
+  e.message += ", which this host does not provide";
+  return e;
+}
+
+// What a render whose plugin hook hangs past the time budget leaves: the iterations complete when the
+// hook was entered (a render_tile's started tiles come from the undo copy; an end_iteration's samples are
+// all in), written as a normal image, then the process ends, since the hook's thread cannot be stopped.
+struct Rescue {
+  const RenderJob *job = nullptr;
+  const BoundPlugins *plugins = nullptr;
+  RunState *run = nullptr;
+  std::atomic<const IterationUndo *> undo{nullptr};
+  std::atomic<const Tiling *> tiling{nullptr};
+  const MessageFn *message = nullptr;
+
+  [[noreturn]] void operator()(const HookWatch::Site &site, double seconds_in_hook) {
+    run->hooks.start_rescue();
+    const IterationUndo *u = undo.load();
+    const Tiling *t = tiling.load();
+    std::unique_ptr<Film> image = run->film.snapshot();
+    if (site.hook == "render_tile" && u && t)
+      for (size_t i = 0; i < t->tiles.size(); ++i)
+        if (run->tile_started[i].load()) u->restore(*image, t->tiles[i]);
+    if (site.hook == "end_iteration") image->set_iterations(image->iterations() + 1);
+    char head[320];
+    std::snprintf(head, sizeof head, "plugin '%s' has been in %s for %.0f s, past the time budget of %g s: ",
+                  site.plugin.c_str(), site.hook.c_str(), seconds_in_hook, job->stop.time_seconds);
+    std::string text = head;
+    if (u && image->iterations() > 0) {
+      LoopOutcome loop;
+      loop.done = image->iterations();
+      loop.failure = NIMBUS_E_INTERNAL;
+      RenderFacts facts = facts_of(*job, *plugins, *run, loop, 0);
+      const Status written = write_outputs(*job, *image, facts);
+      text += written ? "the image of its " + std::to_string(loop.done) +
+                            " complete iterations was written to " + job->exr_path
+                      : "the image could not be written: " + written.error().message;
+    } else {
+      text += "no iteration had completed, so no image was written";
+    }
+    if (*message) (*message)(NIMBUS_LOG_ERROR, text);
+    std::fflush(stderr);
+    std::_Exit(1);
+  }
+};
+
 }  // namespace
 
 Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &options, PluginRegistry &registry,
@@ -57,9 +114,14 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   if (!bound) return bound.error();
   const BoundPlugins &plugins = bound.value();
   if (!plugins.notice.empty() && message) message(NIMBUS_LOG_WARNING, plugins.notice);
+  Rescue rescue;
+  rescue.job = &job, rescue.plugins = &plugins, rescue.run = &run, rescue.message = &message;
+  const Watchdog watchdog(run.hooks, job.stop.time_seconds,
+                          [&](const HookWatch::Site &site, double seconds) { rescue(site, seconds); });
   // The sampler builds its tables, the integrator registers its elements; then the film allocates exactly
   // what was requested.
-  if (Status s = prepare_plugins(plugins, job, world, run.worker_count); !s) return s.error();
+  if (Status s = prepare_plugins(plugins, job, world, run.worker_count, run.hooks); !s)
+    return with_missing_services(run, s.error());
   Film &film = run.film;
   if (Status s = set_up_film(film, job, plugins.integrator, world.lights.group_names(), run.worker_count,
                              run.lightmix_elements);
@@ -74,19 +136,29 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   if (Status s = checkpoint.restore_or_warn(film, message); !s) return s.error();
   if (job.stop.target_error > 0)
     run.error_estimate = std::make_unique<ErrorEstimate>(job.width, job.height, run.worker_count);
+  IterationUndo undo(film);
+  const Tiling tiling = make_tiles(job.width, job.height, job.region);
+  run.tile_started = std::make_unique<std::atomic<uint8_t>[]>(tiling.tiles.size());
 
   nimbus_render_info_t info{};
   info.header = {sizeof(info), NIMBUS_S_TYPE_RENDER_INFO, nullptr};
   info.worker_count = run.worker_count;
   info.first_iteration = film.iterations() + 1;
   info.planned_iterations = job.stop.iterations;
-  if (nimbus_status_t s = plugins.it->begin_render(plugins.integrator.get(), &info); s != NIMBUS_OK)
-    return Error{"integrator '" + plugins.integrator.id() +
-                 "' failed to begin the render: " + status_text(s)};
+  nimbus_status_t begun = NIMBUS_OK;
+  {
+    HookScope hook(run.hooks, plugins.integrator.id(), "begin_render");
+    begun = plugins.it->begin_render(plugins.integrator.get(), &info);
+  }
+  if (begun != NIMBUS_OK)
+    return with_missing_services(run, Error{"integrator '" + plugins.integrator.id() +
+                                            "' failed in begin_render: " + status_text(begun)});
   checkpoint.restore_plugin_states(message);
+  rescue.undo.store(&undo);
+  rescue.tiling.store(&tiling);
 
-  const LoopOutcome loop = run_progressive_loop(
-      job, plugins, run, make_tiles(job.width, job.height, job.region), checkpoint, progress, message);
+  const LoopOutcome loop =
+      run_progressive_loop(job, plugins, run, tiling, undo, checkpoint, progress, message);
 
   // Write what we have, whatever ended the loop. The loop saved the checkpoint first, so that an image
   // write that fails still leaves a way to recover the render.
@@ -105,10 +177,22 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   if (Status s = write_outputs(job, film, facts); !s) return s.error();
   if (!checkpointed)
     return Error{checkpointed.error().message + " (the image was written to " + result.exr_path + ")"};
+  const std::string so_far = "; the image of its " + std::to_string(loop.done) +
+                             " complete iterations was written to " + result.exr_path;
   if (loop.failure != NIMBUS_OK)
-    return Error{"integrator '" + plugins.integrator.id() + "' failed in " + loop.failure_hook + ": " +
-                 status_text(loop.failure) + "; the image so far (" + std::to_string(loop.done) +
-                 " iterations) was written to " + result.exr_path};
+    return with_missing_services(run, Error{"integrator '" + plugins.integrator.id() + "' failed in " +
+                                            loop.failure_hook + ": " + status_text(loop.failure) + so_far});
+  // Samples the film refused: the render went on, but the pixels that lost them are darker by their
+  // share, so the image is not what the scene renders to.
+  if (const uint64_t n = run.outside_tile_writes.load())
+    return Error{"integrator '" + plugins.integrator.id() + "' wrote " + std::to_string(n) +
+                 " samples outside its tile in render_tile; they were dropped (they would race with the "
+                 "tile's own thread)" +
+                 so_far};
+  if (result.nonfinite_samples)
+    return Error{"integrator '" + plugins.integrator.id() + "' gave the film " +
+                 std::to_string(result.nonfinite_samples) +
+                 " NaN or infinite samples in render_tile; they were dropped" + so_far};
   return result;
 }
 
