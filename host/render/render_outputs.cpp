@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include "scene/pixel_filter_type.hpp"
+
 namespace nimbus {
 
 std::vector<std::string> lightmix_layer_names(const std::vector<std::string> &groups) {
@@ -49,6 +51,11 @@ Status write_outputs(const RenderJob &job, const Film &film, const RenderFacts &
       {"seed", std::to_string(job.seed)},  // exact for any 64-bit seed
       {"stopped_by", facts.stopped_by}};
   if (!facts.guide.empty()) smeta.push_back({"guide", facts.guide});
+  // How the pixels were made beyond the scene file: a command line may have replaced its filter and region.
+  smeta.push_back({"filter", std::string(filter_name(job.filter))});
+  if (job.region[2] > job.region[0] && job.region[3] > job.region[1])
+    smeta.push_back({"region", std::to_string(job.region[0]) + "," + std::to_string(job.region[1]) + "," +
+                                   std::to_string(job.region[2]) + "," + std::to_string(job.region[3])});
   std::vector<std::pair<std::string, double>> nmeta = {{"iterations", double(facts.iterations)},
                                                        {"seconds", facts.seconds},
                                                        {"threads", double(facts.threads)},

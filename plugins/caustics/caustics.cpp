@@ -146,7 +146,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       PhotonPass::Result result;
       if (nimbus_status_t s = photon_pass(schedule_.passes() + 1, paths, map_reach_, result); s != NIMBUS_OK)
         return s;
-      stats_.pass_done(result, pass_.map().size(), pass_.map().bytes(),
+      stats_.pass_done(result, pass_.map(),
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       useful_.map_changed();
       schedule_.pass_done(iteration, result.traced, pass_.map().size());
@@ -364,7 +364,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   UsefulPixels useful_;
   LookupRoulette roulette_;
   // The format of save_state's bytes.
-  static constexpr uint32_t kStateVersion = 4;
+  static constexpr uint32_t kStateVersion = 5;
   SolverStats stats_;
 };
 

@@ -4,7 +4,11 @@
 
 #include <nimbus/nimbus.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+
+#include <nimbus/cpp/math.hpp>
 
 namespace nimbus::caustics {
 
@@ -14,6 +18,10 @@ struct SolverStats {
   uint64_t guided_passes = 0, proposals = 0, accepted = 0;
   uint64_t used_paths = 0;    // photon paths of finished maps that some lookup used
   double photon_seconds = 0;  // photon tracing and kd-tree builds
+  // The flux each pass's stored photons carry (the luminance of their powers over the pass's uniform path
+  // count, as lookups normalise them): its sum and sum of squares over the passes. Every pass estimates
+  // the same flux independently, so their spread gives its standard error (energy tests, spec 10 v).
+  double flux_sum = 0, flux_sq = 0;
 
   // What the rest of the solver knows at the end: the budget's photon ratio, the lookup roulette's
   // probabilities, the importance map's size, and a photon's size in bytes.
@@ -22,12 +30,16 @@ struct SolverStats {
     double emission_slots = 0;  // projection-map components with a learnt emission density
   };
 
-  // [main-thread] A photon pass (photon_pass.hpp's Result), its map's photons and bytes, its seconds.
-  template <class PassResult>
-  void pass_done(const PassResult &r, uint64_t map_photons, uint64_t map_bytes, double seconds) {
+  // [main-thread] A photon pass (photon_pass.hpp's Result), its map (photons, bytes), its seconds.
+  template <class PassResult, class Map>
+  void pass_done(const PassResult &r, const Map &map, double seconds) {
     photon_paths += r.traced, proposals += r.proposals, accepted += r.accepted;
     guided_passes += r.importance_ratio > 0 ? 1 : 0;
-    photons += map_photons, photon_bytes += map_bytes, photon_seconds += seconds;
+    photons += map.size(), photon_bytes += map.bytes(), photon_seconds += seconds;
+    double flux = 0;
+    for (size_t i = 0; i < map.size(); ++i) flux += luminance(Vec3f::load(map.data()[i].power));
+    flux = r.paths > 0 ? flux / double(r.paths) : 0.0;
+    flux_sum += flux, flux_sq += flux * flux;
     ++passes;
   }
 
@@ -39,6 +51,13 @@ struct SolverStats {
     progress->stat_add(h, "caustics_photon_passes", double(passes));
     progress->stat_add(h, "caustics_map_iterations", double(map_iterations));
     progress->stat_add(h, "caustics_photon_seconds", photon_seconds);
+    // The flux of a pass's stored photons: the mean over the passes and its standard error.
+    const double mean_flux = passes > 0 ? flux_sum / double(passes) : 0.0;
+    const double flux_var =
+        passes > 1 ? std::max(0.0, flux_sq / double(passes) - mean_flux * mean_flux) : 0.0;
+    progress->stat_add(h, "caustics_photon_flux", mean_flux);
+    progress->stat_add(h, "caustics_photon_flux_se",
+                       passes > 1 ? std::sqrt(flux_var / double(passes - 1)) : 0.0);
     // Camera paths whose MIS weights met an overflow (mis.hpp): 0 in any sane scene.
     progress->stat_add(h, "caustics_mis_clamped", double(mis_clamped));
     progress->stat_add(h, "caustics_photon_ratio", f.photon_ratio);
