@@ -19,6 +19,7 @@
 #include "emitters.hpp"
 #include "lookup_roulette.hpp"
 #include "merging.hpp"
+#include "photon_budget.hpp"
 #include "photon_pass.hpp"
 #include "schedule.hpp"
 #include "solver_options.hpp"
@@ -54,6 +55,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
 
   nimbus_status_t prepare(const nimbus_render_setup_t &setup) override {
     options_ = SolverOptions::of(setup);
+    budget_ = PhotonBudget(options_.photon_memory_mb), budget_said_ = false;
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
     seed_ = setup.seed;
     guide_ = options_.uniform_emission ? GuideBinding{} : GuideBinding::of(setup.guide);
@@ -117,7 +119,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
 
   nimbus_status_t begin_iteration(uint64_t iteration) override {
     if (!armed_) return NIMBUS_OK;
-    const uint64_t paths = schedule_.plan(iteration);
+    const uint64_t paths = within_memory_budget(schedule_.plan(iteration));
     if (rebuild_map_) {
       // A resumed render: the map of the last pass, from the same arguments (photon_pass is deterministic)
       // and the same light selection, with the lookups' flags on its paths as they were saved. Traced
@@ -301,6 +303,21 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     return s;
   }
 
+  // The pass's paths, fewer when their photons could need more than the memory budget (said once).
+  uint64_t within_memory_budget(uint64_t paths) {
+    const PhotonKdTree &map = pass_.map();
+    const double per_photon = map.size() ? double(map.bytes()) / double(map.size()) : 0;
+    const uint64_t fit = budget_.paths_within(paths, per_photon);
+    if (fit < paths && !budget_said_)
+      log(NIMBUS_LOG_WARNING, "a photon pass of " + std::to_string(paths) + " paths could need " +
+                                  std::to_string(uint64_t(budget_.worst_bytes(paths, per_photon)) >> 20) +
+                                  " MiB, over the photon memory budget of " +
+                                  std::to_string(budget_.bytes() >> 20) + " MiB: passes trace at most " +
+                                  std::to_string(fit) + " paths");
+    budget_said_ = budget_said_ || fit < paths;
+    return fit;
+  }
+
   nimbus_status_t photon_pass(uint32_t pass, uint64_t paths, float filter_reach, PhotonPass::Result &result) {
     const nimbus_host_t *h = host().get();
     if (progress_) progress_->report(h, 0, paths, "photons");
@@ -341,6 +358,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   sdk::PerWorker<ImportanceMarks> marks_;         // lookups that found light since the last iteration
 
   SolverOptions options_;  // the `caustics` switch and the measurement options
+  PhotonBudget budget_{0};
+  bool budget_said_ = false;
   bool armed_ = false;     // enabled, and some light emits photons towards sharp geometry
   bool classify_ = false;  // camera passes without a map sort paths into the `caustics` element
   EmitterSet emitters_;

@@ -12,11 +12,6 @@ namespace {
 // Photon paths per task: small enough that a pass at the N_min floor shares out evenly over the
 // workers.
 constexpr uint64_t kPhotonPathsPerTask = 1024;
-// A task stops tracing when its buffer holds this many photons per path (a memory guard far above what
-// caustic scenes store). A task that stops early leaves part of its run of emission strata
-// (emission_strata.hpp) unsampled; task_path() starts each pass's run at another place, so the paths
-// left out differ from pass to pass and the map normalised by the completed paths has no fixed hole.
-constexpr uint64_t kPhotonsPerPathCap = 4;
 // Share of lookups whose radius the occupancy filter in front of the photon map covers
 // (occupancy_filter.hpp).
 constexpr double kFilterShare = 0.95;

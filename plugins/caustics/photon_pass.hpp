@@ -19,6 +19,12 @@
 
 namespace nimbus::caustics {
 
+// A task stops tracing when its buffer holds this many photons per path (a memory guard far above what
+// caustic scenes store). A task that stops early leaves part of its run of emission strata
+// (emission_strata.hpp) unsampled; task_path() starts each pass's run at another place, so the paths
+// left out differ from pass to pass and the map normalised by the completed paths has no fixed hole.
+constexpr uint64_t kPhotonsPerPathCap = 4;
+
 // Chains per guided photon pass: fixed, so that the photons do not depend on the thread count.
 inline constexpr uint32_t kGuideChains = 256;
 

@@ -4,6 +4,7 @@
 
 #include <nimbus/nimbus.hpp>
 
+#include <cstdlib>
 #include <cstring>
 
 #include <nimbus/cpp/path_services.hpp>
@@ -32,12 +33,16 @@ const nimbus_option_decl_t kOptions[] = {
     {"photon_light_selection", NIMBUS_OPTION_CHOICE, 0, "adaptive", kSelectionChoices,
      "for measurement: lights chosen for photons by camera distance and usefulness, or by power alone"},
     {"photon_times", NIMBUS_OPTION_CHOICE, 0, "matched", kTimeChoices,
-     "for measurement: lookups merge photons of similar time only (motion blur), or of any time"}};
+     "for measurement: lookups merge photons of similar time only (motion blur), or of any time"},
+    {"photon_memory_mb", NIMBUS_OPTION_INT, 0, "0", nullptr,
+     "resource limit: MiB one photon pass may use (0: a quarter of the machine's memory); a pass that "
+     "could need more traces fewer paths"}};
 
 struct SolverOptions {
   bool enabled = true;  // the `caustics` switch
   bool uniform_emission = true, adaptive_map = false, power_selection = false;
   bool times_matched = true;
+  uint64_t photon_memory_mb = 0;  // 0: a quarter of the machine's memory (photon_budget.hpp)
 
   // [main-thread] The host validated the values against kOptions; an absent option is its default.
   static SolverOptions of(const nimbus_render_setup_t &setup) {
@@ -51,6 +56,8 @@ struct SolverOptions {
     o.adaptive_map = is("photon_emission", "adaptive-map");
     o.power_selection = is("photon_light_selection", "power");
     o.times_matched = !is("photon_times", "ignored");
+    if (const char *mb = sdk::option_value(setup, "photon_memory_mb"); mb && mb[0] != '-')
+      o.photon_memory_mb = std::strtoull(mb, nullptr, 10);
     return o;
   }
 };

@@ -1,0 +1,47 @@
+// The photon memory budget: a pass whose photons could need more memory than the budget traces fewer
+// paths instead of failing for want of memory. Photons are counted at the per-path guard's worst case
+// (photon_pass.cpp stops a task at kPhotonsPerPathCap photons per path), each costing its place in the
+// task's chunk and its place in the map (with the map's index, measured on the last map), so the bound
+// holds for any scene. The schedule then learns from the paths really traced.
+#pragma once
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdint>
+
+#include "photon_map.hpp"
+#include "photon_pass.hpp"
+
+namespace nimbus::caustics {
+
+class PhotonBudget {
+ public:
+  // megabytes: the budget in MiB; 0 picks a quarter of the machine's memory.
+  explicit PhotonBudget(uint64_t megabytes) : bytes_(megabytes ? megabytes << 20 : quarter_of_memory()) {}
+
+  uint64_t bytes() const { return bytes_; }
+
+  // Paths a pass may trace: `paths` or fewer, so that the worst case fits. map_bytes_per_photon: of
+  // the last map (0 before the first, then an estimate with the index is used).
+  uint64_t paths_within(uint64_t paths, double map_bytes_per_photon) const {
+    const double per_photon = std::max(map_bytes_per_photon, 1.5 * sizeof(Photon)) + sizeof(Photon);
+    const double fit = double(bytes_) / (per_photon * double(kPhotonsPerPathCap));
+    return std::min<uint64_t>(paths, uint64_t(std::max(fit, 1.0)));
+  }
+
+  // The worst-case bytes of a pass of `paths` (for the message that a pass was shrunk).
+  double worst_bytes(uint64_t paths, double map_bytes_per_photon) const {
+    const double per_photon = std::max(map_bytes_per_photon, 1.5 * sizeof(Photon)) + sizeof(Photon);
+    return double(paths) * double(kPhotonsPerPathCap) * per_photon;
+  }
+
+ private:
+  static uint64_t quarter_of_memory() {
+    const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) / 4 : uint64_t(1) << 30;
+  }
+  uint64_t bytes_;
+};
+
+}  // namespace nimbus::caustics
