@@ -1,5 +1,6 @@
 // `nimbus render SCENE`: parse, render progressively, write EXR + PNG. Ctrl-C finishes the current
 // iteration and writes complete files; a second Ctrl-C ends the process at once.
+#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -7,10 +8,12 @@
 #include <array>
 #include <atomic>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -254,6 +257,17 @@ int render_command(const std::vector<std::string> &argv) {
                    ec.message().c_str());
       return kExitFailure;
     }
+    // A directory the render cannot write into (read-only, no permission) is found now, not after the
+    // render: a file is made where the image's temporary will be, and removed.
+    const std::string probe = a.options.output_exr + ".tmp-" + std::to_string(::getpid());
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) {
+      std::fprintf(stderr, "nimbus render: cannot write into %s: %s\n",
+                   parent.empty() ? "the current directory" : parent.c_str(), std::strerror(errno));
+      return kExitFailure;
+    }
+    ::close(fd);
+    ::unlink(probe.c_str());
   }
 
   HostServices discovery_host(nullptr);

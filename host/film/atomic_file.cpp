@@ -30,6 +30,14 @@ bool flush_to_disk(const std::string &file) {
   return ok;
 }
 
+// The writers' own words for a full disk are often generic ("file output failed"): say it.
+std::string with_space_left(const std::string &reason, const fs::path &dir) {
+  std::error_code ec;
+  const fs::space_info space = fs::space(dir.empty() ? fs::path(".") : dir, ec);
+  if (ec || space.available >= (uint64_t(64) << 10)) return reason;
+  return reason + " (the file system is full: " + std::to_string(space.available) + " bytes free)";
+}
+
 }  // namespace
 
 Status write_atomically(const std::string &path,
@@ -45,11 +53,12 @@ Status write_atomically(const std::string &path,
   }
   const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
   if (Status written = write(tmp); !written) {
+    const std::string reason = with_space_left(written.error().message, parent);
     remove_temporary(tmp);
-    return fail(written.error().message);
+    return fail(reason);
   }
   if (!flush_to_disk(tmp)) {
-    const std::string reason = std::strerror(errno);
+    const std::string reason = with_space_left(std::strerror(errno), parent);
     remove_temporary(tmp);
     return fail("cannot flush '" + tmp + "': " + reason);
   }

@@ -2,8 +2,11 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <mutex>
+
+#include <unistd.h>
 
 #include "abi/host_services.hpp"
 #include "abi/run_state.hpp"
@@ -47,6 +50,19 @@ Error with_missing_services(RunState &run, Error e) {
   for (size_t i = 0; i < run.missing_services.size(); ++i)
     e.message += (i ? ", " : "") + run.missing_services[i];
   e.message += ", which this host does not provide";
+  return e;
+}
+
+// The image could not be written where asked (a full disk, a directory gone read-only): rather than lose
+// the render, it goes to the temporary directory, and the error says where.
+Error write_elsewhere(const RenderJob &job, const Film &film, const RenderFacts &facts, Error e) {
+  RenderJob there = job;
+  const std::string stem = std::filesystem::path(job.exr_path).stem().string();
+  const auto dir = std::filesystem::temp_directory_path();
+  there.exr_path = (dir / (stem + "-" + std::to_string(::getpid()) + ".exr")).string();
+  there.png_path = (dir / (stem + "-" + std::to_string(::getpid()) + ".png")).string();
+  if (write_outputs(there, film, facts))
+    e.message += "; the image was written to " + there.exr_path + " and " + there.png_path + " instead";
   return e;
 }
 
@@ -174,7 +190,7 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   result.exr_path = job.exr_path;
   result.png_path = job.png_path;
   const RenderFacts facts = facts_of(job, plugins, run, loop, checkpoint.previous_seconds());
-  if (Status s = write_outputs(job, film, facts); !s) return s.error();
+  if (Status s = write_outputs(job, film, facts); !s) return write_elsewhere(job, film, facts, s.error());
   if (!checkpointed)
     return Error{checkpointed.error().message + " (the image was written to " + result.exr_path + ")"};
   const std::string so_far = "; the image of its " + std::to_string(loop.done) +
