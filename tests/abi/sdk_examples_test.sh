@@ -6,7 +6,7 @@
 # build the out-of-tree examples (plugins/examples/, find_package(Nimbus 1.x REQUIRED)) against that
 # prefix and against the build tree (-DNimbus_DIR=<build>), install them, check they export only the
 # entry, load them with `nimbus plugins` (each listed with its kind) and render a scene with each
-# integrator (a guide renders only when an integrator binds it). Any step failing fails the test; exit 77
+# integrator (a guide renders only when an integrator binds it). Any step failing fails the test; exit 1
 # means "cannot run in this configuration" (ctest: skipped).
 set -euo pipefail
 
@@ -19,16 +19,16 @@ examples=(c-minimal:org.example.normals:example_normals:integrator
   c-guide:org.example.independence:example_independence:guiding)
 
 if [[ ! -x $nimbus ]]; then
-  echo "SKIP: $nimbus is not built" >&2
-  exit 77
+  echo "FAIL: $nimbus is not built" >&2
+  exit 1
 fi
 # A sanitized host runs unsanitized plugins fine (the runtime comes with the executable), so the
 # examples build plainly in that configuration too; the only thing that cannot work is a sanitizer
 # runtime that refuses to start (e.g. ASan under a ptrace-restricted sandbox).
 if [[ ${sanitize^^} == ON || ${sanitize^^} == TRUE || $sanitize == 1 ]]; then
   if ! "$nimbus" plugins --help >/dev/null 2>&1; then
-    echo "SKIP: the sanitized nimbus executable does not start here, so no plugin can be loaded" >&2
-    exit 77
+    echo "FAIL: the sanitized nimbus executable does not start here, so no plugin can be loaded" >&2
+    exit 1
   fi
 fi
 

@@ -5,18 +5,18 @@
 # a fresh prefix, configure plugins/ on its own against that prefix alone (find_package(Nimbus); no host
 # sources, no host include path), build and install every plugin, check each exports only the entry, and
 # render the default scene with the out-of-tree nimbus.pt and nimbus.caustics (NIMBUS_PLUGIN_PATH comes
-# first, so they win over the build's own copies). Exit code 77: cannot run in this configuration.
+# first, so they win over the build's own copies). A configuration that cannot run it fails it.
 set -euo pipefail
 
 build=$1 src=$2 cmake=$3 generator=$4 make_program=$5 cc=$6 cxx=$7 sanitize=${8:-OFF} nm=${9:-nm}
 nimbus=$build/bin/nimbus
 if [[ ! -x $nimbus ]]; then
-  echo "SKIP: $nimbus is not built" >&2
-  exit 77
+  echo "FAIL: $nimbus is not built" >&2
+  exit 1
 fi
 if [[ ${sanitize^^} == ON || ${sanitize^^} == TRUE || $sanitize == 1 ]] && ! "$nimbus" plugins --help >/dev/null 2>&1; then
-  echo "SKIP: the sanitized nimbus executable does not start here, so no plugin can be loaded" >&2
-  exit 77
+  echo "FAIL: the sanitized nimbus executable does not start here, so no plugin can be loaded" >&2
+  exit 1
 fi
 
 work=$(mktemp -d "$build/tests/sdk_plugins.XXXXXX")

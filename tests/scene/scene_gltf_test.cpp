@@ -128,8 +128,8 @@ TEST(SceneGltf, MirroringNodeKeepsTheFrontFace) {
   EXPECT_GT(n.z, 0);
 }
 
-TEST(SceneGltf, BinaryGlb) {
-  TempDir dir;
+// The quad as a binary .glb: header, JSON chunk, BIN chunk.
+std::vector<unsigned char> quad_glb() {
   std::string json = quad_gltf("");
   json.replace(json.find(R"(, "uri": "")"), std::strlen(R"(, "uri": "")"), "");
   while (json.size() % 4) json += ' ';
@@ -141,10 +141,41 @@ TEST(SceneGltf, BinaryGlb) {
   glb.insert(glb.end(), json.begin(), json.end());
   put<uint32_t>(glb, {uint32_t(bin.size()), 0x004E4942});
   glb.insert(glb.end(), bin.begin(), bin.end());
+  return glb;
+}
+
+TEST(SceneGltf, BinaryGlb) {
+  TempDir dir;
+  const std::vector<unsigned char> glb = quad_glb();
   const std::string file = dir.write("quad.glb", std::string(glb.begin(), glb.end()));
   const SceneDesc scene = parse_ok(object_with(file));
   ASSERT_EQ(scene.shapes.size(), 1u);
   EXPECT_EQ(scene.shapes[0].mesh.indices.size(), 6u);
+}
+
+// A damaged .glb (cut short in its header, its JSON or its binary chunk; a wrong magic; a chunk length
+// past the end of the file) is a load error naming the file, never a read past the data (ASan checks).
+TEST(SceneGltfErrors, CorruptGlb) {
+  TempDir dir;
+  const std::vector<unsigned char> glb = quad_glb();
+  const auto variant = [&](const std::string &name, std::vector<unsigned char> bytes) {
+    const std::string file = dir.write(name, std::string(bytes.begin(), bytes.end()));
+    EXPECT_TRUE(fails_at(object_with(file, ", material: white"), 4, 26, "objects[0].file",
+                         "cannot load mesh '" + file + "'"))
+        << name;
+  };
+  for (size_t keep : {size_t(6), size_t(16), size_t(40), glb.size() - 30, glb.size() - 1})
+    variant("cut_" + std::to_string(keep) + ".glb",
+            std::vector<unsigned char>(glb.begin(), glb.begin() + keep));
+  std::vector<unsigned char> magic = glb;
+  magic[0] = 'x';
+  variant("magic.glb", magic);
+  std::vector<unsigned char> json_length = glb;
+  json_length[12] = 0xff, json_length[13] = 0xff;  // the JSON chunk's length, far past the file
+  variant("json_length.glb", json_length);
+  std::vector<unsigned char> total_length = glb;
+  total_length[8] = 0xff, total_length[9] = 0xff, total_length[10] = 0xff;  // the header's total length
+  variant("total_length.glb", total_length);
 }
 
 TEST(SceneGltf, DiffuseMaterialFromTheFile) {
