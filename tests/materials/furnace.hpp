@@ -67,12 +67,10 @@ Estimate albedo_by_eval(const B &bsdf, const Vec3f &wo, TransportMode mode, int 
 
 // A lower bound of single-scattering GGX's directional albedo E[f |cos| / pdf] in importance transport
 // (the energy a surface keeps), for a dielectric of index `eta` (inside over outside) or, with eta 0, an
-// ideal mirror (Fresnel 1, reflection only). Computed independently of materials/: this file's own D,
-// Smith G1 and Fresnel, integrated over the visible normals by an n x n midpoint rule. Whatever the
-// masking-shadowing form, the albedo is E_m[F G2(wo, wi) / G1(wo)] over visible normals m; the
-// uncorrelated G1(wo) G1(wi) never exceeds the height-correlated G2 = 1 / (1 + Lambda(wo) + Lambda(wi)),
-// since (1 + Lo)(1 + Li) >= 1 + Lo + Li, so using it gives a lower bound, exact at normal incidence where
-// Lambda(wo) = 0.
+// ideal mirror: support/ggx_reference.hpp's bounce integrated over the visible normals by an n x n midpoint
+// rule, independent of materials/. Whatever the masking-shadowing form, the albedo is
+// E_m[F G2(wo, wi) / G1(wo)] over the visible normals m, and G1(wi) lower-bounds G2 / G1(wo); the bound
+// is exact at normal incidence, where Lambda(wo) = 0.
 double ggx_albedo_lower_bound(double eta, double alpha, const Vec3f &wo, int n = 256);
 
 // The quadrature's error bound at n = 256: the largest difference from n = 2048 over the IORs, roughnesses
