@@ -73,9 +73,14 @@ Estimate albedo_by_eval(const B &bsdf, const Vec3f &wo, TransportMode mode, int 
 // is exact at normal incidence, where Lambda(wo) = 0.
 double ggx_albedo_lower_bound(double eta, double alpha, const Vec3f &wo, int n = 256);
 
+// The same integral with the height-correlated G2 / G1(wo) itself: the albedo a correct single-scattering
+// GGX with height-correlated masking-shadowing (the form materials/microfacet.hpp documents) has.
+double ggx_albedo_height_correlated(double eta, double alpha, const Vec3f &wo, int n = 256);
+
 // The quadrature's error bound at n = 256: the largest difference from n = 2048 over the IORs, roughnesses
-// and angles the tests use is 1.4e-3 (the integrand is bounded by 1 and piecewise smooth, its jumps at
-// the horizon and the critical angle).
+// and angles the tests use is 1.4e-3 for either integral (each integrand is bounded by 1 and piecewise
+// smooth, its jumps at the horizon and the critical angle; the worst case is alpha 0.05, where the grid's
+// last cells stand for GGX's long tail).
 inline constexpr double kAlbedoQuadratureError = 2e-3;
 
 // The albedo floor for an estimate of a rough dielectric or mirror: the lower bound, less the quadrature
@@ -83,5 +88,9 @@ inline constexpr double kAlbedoQuadratureError = 2e-3;
 inline double albedo_floor(double eta, double alpha, const Vec3f &wo, const Estimate &e) {
   return ggx_albedo_lower_bound(eta, alpha, wo) - kAlbedoQuadratureError - 5 * e.std_error;
 }
+
+// How far an estimate may stand from ggx_albedo_height_correlated: five standard errors and the
+// quadrature error.
+inline double albedo_tolerance(const Estimate &e) { return 5 * e.std_error + kAlbedoQuadratureError; }
 
 }  // namespace nimbus::test

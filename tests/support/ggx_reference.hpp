@@ -31,6 +31,14 @@ inline double smith_g1(const V3 &w, double alpha) {
   return 2 / (1 + std::sqrt(1 + alpha * alpha * (1 - c2) / c2));
 }
 
+// Smith's Lambda of direction w: G1 = 1 / (1 + Lambda), and the height-correlated masking-shadowing of a
+// pair is G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) (Heitz 2014).
+inline double smith_lambda(const V3 &w, double alpha) {
+  const double c2 = w[2] * w[2];
+  if (c2 == 0) return 1e300;
+  return 0.5 * (std::sqrt(1 + alpha * alpha * (1 - c2) / c2) - 1);
+}
+
 // The microfacet normal at (u1, u2) of Heitz's map, wo in the upper hemisphere: uniform (u1, u2) give the
 // normals visible from wo, with density G1(wo) max(0, wo.m) D(m) / cos(wo).
 inline V3 visible_normal(const V3 &wo, double alpha, double u1, double u2) {
@@ -66,6 +74,8 @@ inline double fresnel(double cos_i, double etap, double *cos_t) {
 struct Bounce {
   V3 reflected{}, refracted{};
   double fresnel = 1, w_reflect = 0, w_refract = 0;
+  // The weights G2(wo, wi) / G1(wo) of the height-correlated form itself, at least the ones above.
+  double w_reflect_correlated = 0, w_refract_correlated = 0;
 };
 
 inline Bounce bounce(const V3 &w, double eta, double alpha, double u1, double u2) {
@@ -79,10 +89,18 @@ inline Bounce bounce(const V3 &w, double eta, double alpha, double u1, double u2
   double cos_t = 0;
   b.fresnel = eta == 0 ? 1 : fresnel(c, etap, &cos_t);
   b.reflected = axpy(2 * c, m, scale(-1, wo));
-  if (b.reflected[2] > 0) b.w_reflect = smith_g1(b.reflected, alpha);
+  const double lo = smith_lambda(wo, alpha);
+  const auto correlated = [&](const V3 &wi) { return (1 + lo) / (1 + lo + smith_lambda(wi, alpha)); };
+  if (b.reflected[2] > 0) {
+    b.w_reflect = smith_g1(b.reflected, alpha);
+    b.w_reflect_correlated = correlated(b.reflected);
+  }
   if (b.fresnel < 1) {
     b.refracted = axpy(c / etap - cos_t, m, scale(-1 / etap, wo));
-    if (b.refracted[2] < 0) b.w_refract = smith_g1(b.refracted, alpha);
+    if (b.refracted[2] < 0) {
+      b.w_refract = smith_g1(b.refracted, alpha);
+      b.w_refract_correlated = correlated(b.refracted);
+    }
   }
   b.reflected[2] *= side, b.refracted[2] *= side;
   return b;
