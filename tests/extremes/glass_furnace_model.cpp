@@ -83,7 +83,7 @@ struct Slab {
 };
 
 // A path's weight: the product of the reference model's weights, or 0 if it is stopped.
-double trace(V3 o, V3 d, double eta, double alpha, const Slab *slab, Rng &rng) {
+double trace(V3 o, V3 d, double eta, double alpha, const Slab *slab, bool correlated, Rng &rng) {
   double weight = 1;
   for (int bounce = 0; bounce < kMaxBounces; ++bounce) {
     std::optional<Hit> h = hit_unit_sphere(o, d);
@@ -98,7 +98,10 @@ double trace(V3 o, V3 d, double eta, double alpha, const Slab *slab, Rng &rng) {
     const reference::Bounce s = reference::bounce(wo, eta, alpha, rng.next(), rng.next());
     const bool reflect = rng.next() < s.fresnel;
     const V3 &wl = reflect ? s.reflected : s.refracted;
-    weight *= reflect ? s.w_reflect : s.w_refract;
+    if (correlated)
+      weight *= reflect ? s.w_reflect_correlated : s.w_refract_correlated;
+    else
+      weight *= reflect ? s.w_reflect : s.w_refract;
     if (weight == 0) return 0;
     d = unit(axpy(wl[0], t, axpy(wl[1], bt, scale(wl[2], n))));
     o = axpy(std::copysign(1e-6, wl[2]), n, p);
@@ -106,10 +109,8 @@ double trace(V3 o, V3 d, double eta, double alpha, const Slab *slab, Rng &rng) {
   return 0;
 }
 
-}  // namespace
-
-std::vector<double> glass_furnace_lower_bound(double eta, double alpha, bool slab, uint32_t width,
-                                              uint32_t height, int paths, uint64_t seed) {
+std::vector<double> furnace_image(double eta, double alpha, bool slab, uint32_t width, uint32_t height,
+                                  int paths, uint64_t seed, bool correlated) {
   const Slab box;
   Rng rng{seed};
   // The camera at (0, -3, 0) looks along +y, +z up and +x to the right, with a 40-degree field of view
@@ -122,11 +123,23 @@ std::vector<double> glass_furnace_lower_bound(double eta, double alpha, bool sla
       for (int i = 0; i < paths; ++i) {
         const double sx = (2 * (x + rng.next()) / width - 1) * half_width;
         const double sy = (1 - 2 * (y + rng.next()) / height) * half_height;
-        sum += trace({0, -3, 0}, unit({sx, 1, sy}), eta, alpha, slab ? &box : nullptr, rng);
+        sum += trace({0, -3, 0}, unit({sx, 1, sy}), eta, alpha, slab ? &box : nullptr, correlated, rng);
       }
       image[size_t(y) * width + x] = sum / paths;
     }
   return image;
+}
+
+}  // namespace
+
+std::vector<double> glass_furnace_lower_bound(double eta, double alpha, bool slab, uint32_t width,
+                                              uint32_t height, int paths, uint64_t seed) {
+  return furnace_image(eta, alpha, slab, width, height, paths, seed, false);
+}
+
+std::vector<double> glass_furnace_expected(double eta, double alpha, bool slab, uint32_t width,
+                                           uint32_t height, int paths, uint64_t seed) {
+  return furnace_image(eta, alpha, slab, width, height, paths, seed, true);
 }
 
 }  // namespace nimbus::extremes
