@@ -57,7 +57,8 @@ inline float fresnel_complex(float cos_i, float eta, float k) {
   return std::isfinite(r) ? clamp(r, 0.0f, 1.0f) : 1.0f;
 }
 
-// Per RGB channel: the host renders RGB, so eta and k are sampled at three wavelengths (scene/metals.hpp).
+// Per RGB channel: the host renders RGB, so eta and k are RGB triples (scene/metals.hpp projects measured
+// spectra onto them).
 inline Rgb fresnel_complex(float cos_i, const Rgb &eta, const Rgb &k) {
   return {fresnel_complex(cos_i, eta.x, k.x), fresnel_complex(cos_i, eta.y, k.y),
           fresnel_complex(cos_i, eta.z, k.z)};

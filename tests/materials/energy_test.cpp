@@ -74,6 +74,23 @@ TEST(Furnace, GgxAlphaOneAtNormalIncidenceIsOneMinusLn2) {
   EXPECT_NEAR(b.mean, 1 - std::log(2.0), 5 * b.std_error + 1e-4) << b.std_error;
 }
 
+// The independent model behind the albedo floors reproduces what is known in closed form: 1 - ln 2 where
+// its bound is exact (normal incidence), and no loss at all as the roughness vanishes, where a dielectric
+// reflects F and transmits 1 - F of the energy.
+TEST(Furnace, AlbedoLowerBoundModelMatchesTheClosedForms) {
+  EXPECT_NEAR(ggx_albedo_lower_bound(0, 1, Vec3f(0, 0, 1)), 1 - std::log(2.0), kAlbedoQuadratureError);
+  for (float theta : {0.0f, 30.0f, 60.0f, 150.0f, 120.0f})
+    for (double eta : {1.33, 2.4})
+      EXPECT_NEAR(ggx_albedo_lower_bound(eta, 1e-4, direction_deg(theta)), 1, kAlbedoQuadratureError)
+          << "eta " << eta << " theta " << theta;
+}
+
+// The floors are the independent lower bound of furnace.hpp less its quadrature error and five standard
+// errors of the estimate (40000 stratified samples, standard errors 1e-4 to 2e-3): a wrong Jacobian or
+// Fresnel weight drops below them: the bound is exact at normal incidence, within 0.007 of the albedo up to
+// 30 degrees and 0.06 up to 60 (it loosens towards grazing angles, where G1(wi) undercuts G2 / G1(wo)).
+// At every angle the albedo also equals the independent model's height-correlated albedo within five
+// standard errors and the quadrature error.
 TEST(Furnace, RoughDielectricLossIsBounded) {
   for (float ior : {1.0001f, 1.33f, 1.5f, 2.4f, 4.0f})
     for (float alpha : {0.05f, 0.3f, 0.8f})
@@ -84,19 +101,22 @@ TEST(Furnace, RoughDielectricLossIsBounded) {
         const std::string where = "ior " + std::to_string(ior) + " alpha " + std::to_string(alpha) +
                                   " theta " + std::to_string(theta) + ": " + std::to_string(e.mean);
         EXPECT_LE(e.mean, 1 + 5 * e.std_error + 1e-5) << where;
-        EXPECT_GE(e.mean, albedo_floor(alpha, theta)) << where;
+        EXPECT_GE(e.mean, albedo_floor(ior, alpha, wo, e)) << where;
+        EXPECT_NEAR(e.mean, ggx_albedo_height_correlated(ior, alpha, wo), albedo_tolerance(e)) << where;
       }
 }
 
 TEST(Furnace, RoughMirrorLossIsBounded) {
   for (float alpha : {0.05f, 0.2f, 0.5f, 1.0f})
     for (float theta : kAngles) {
-      const Estimate e = albedo_by_sampling(ConductorBsdf::mirror(Rgb(1), alpha), direction_deg(theta),
-                                            TransportMode::Radiance, 40000, 17);
+      const Vec3f wo = direction_deg(theta);
+      const Estimate e =
+          albedo_by_sampling(ConductorBsdf::mirror(Rgb(1), alpha), wo, TransportMode::Radiance, 40000, 17);
       const std::string where = "alpha " + std::to_string(alpha) + " theta " + std::to_string(theta) + ": " +
                                 std::to_string(e.mean);
       EXPECT_LE(e.mean, 1 + 5 * e.std_error + 1e-5) << where;
-      EXPECT_GE(e.mean, albedo_floor(alpha, theta)) << where;
+      EXPECT_GE(e.mean, albedo_floor(0, alpha, wo, e)) << where;
+      EXPECT_NEAR(e.mean, ggx_albedo_height_correlated(0, alpha, wo), albedo_tolerance(e)) << where;
     }
 }
 

@@ -1,22 +1,35 @@
 #include "furnace.hpp"
 
+#include "support/ggx_reference.hpp"
+
 namespace nimbus::test {
 
-double albedo_floor(float alpha, float theta_deg) {
-  static constexpr float kFloorAngles[] = {0, 30, 60, 80, 89};
-  static constexpr struct {
-    float alpha;
-    double floor[5];
-  } kTable[] = {{0.05f, {0.94, 0.94, 0.94, 0.90, 0.57}}, {0.2f, {0.89, 0.87, 0.81, 0.74, 0.48}},
-                {0.3f, {0.82, 0.79, 0.72, 0.67, 0.47}},  {0.5f, {0.63, 0.61, 0.60, 0.56, 0.46}},
-                {0.8f, {0.37, 0.39, 0.48, 0.44, 0.45}},  {1.0f, {0.25, 0.28, 0.39, 0.40, 0.40}}};
-  const float from_normal = std::min(theta_deg, 180 - theta_deg);
-  for (const auto &row : kTable)
-    if (row.alpha == alpha)
-      for (int i = 0; i < 5; ++i)
-        if (kFloorAngles[i] == from_normal) return row.floor[i];
-  ADD_FAILURE() << "no albedo floor for alpha " << alpha << " theta " << theta_deg;
-  return 1;
+namespace {
+
+template <class Weight>
+double integrate(double eta, double alpha, const Vec3f &wo, int n, Weight weight) {
+  const reference::V3 w = reference::unit({wo.x, wo.y, wo.z});
+  double sum = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const reference::Bounce b = reference::bounce(w, eta, alpha, (i + 0.5) / n, (j + 0.5) / n);
+      sum += weight(b);
+    }
+  return sum / (double(n) * n);
+}
+
+}  // namespace
+
+double ggx_albedo_lower_bound(double eta, double alpha, const Vec3f &wo, int n) {
+  return integrate(eta, alpha, wo, n, [](const reference::Bounce &b) {
+    return b.fresnel * b.w_reflect + (1 - b.fresnel) * b.w_refract;
+  });
+}
+
+double ggx_albedo_height_correlated(double eta, double alpha, const Vec3f &wo, int n) {
+  return integrate(eta, alpha, wo, n, [](const reference::Bounce &b) {
+    return b.fresnel * b.w_reflect_correlated + (1 - b.fresnel) * b.w_refract_correlated;
+  });
 }
 
 }  // namespace nimbus::test
