@@ -45,8 +45,8 @@ if [[ "$(cat "$tbb_lib/version" 2>/dev/null)" != "$tbb_version" ]]; then
   # signature and would only warn about it, so its output is shown only if it fails.
   (cd "$tbb_dir" && apt-get "${apt_options[@]}" -qq source --download-only "$tbb_package=$tbb_version" &&
     { dpkg-source -x ./*.dsc src >dpkg-source.log 2>&1 || { cat dpkg-source.log >&2 && exit 1; }; })
-  cmake -S "$tbb_dir/src" -B "$tbb_dir/build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTBB_SANITIZE=thread \
-    -DTBB_TEST=OFF -DTBB_EXAMPLES=OFF -DTBB_STRICT=OFF -DTBBMALLOC_BUILD=OFF \
+  cmake -S "$tbb_dir/src" -B "$tbb_dir/build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DTBB_SANITIZE=thread -DTBB_TEST=OFF -DTBB_EXAMPLES=OFF -DTBB_STRICT=OFF -DTBBMALLOC_BUILD=OFF \
     -DTBB_DISABLE_HWLOC_AUTOMATIC_SEARCH=ON >/dev/null
   cmake --build "$tbb_dir/build" -j "$jobs" --target tbb >/dev/null
   cp -P "$(find "$tbb_dir/build" -name 'libtbb.so.12*' -type f)" "$tbb_lib/libtbb.so.12"
@@ -63,22 +63,25 @@ if ! ldd "$build_dir/tests/tsan_canary" | grep -q "$tbb_lib/libtbb.so.12"; then
   exit 1
 fi
 
-# halt_on_error: the first report ends the process with exit status 66, so its test fails. The
-# subprocesses the e2e tests start (the nimbus CLI) inherit the options and the library path.
-export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 exitcode=66 suppressions=$here/suppressions.txt"
+# halt_on_error: the first report ends the process with exit status 66, so its test fails. Reports go
+# to files in $reports, one per process, so that one in a subprocess the e2e tests start (the nimbus
+# CLI, which inherits the options and the library path) fails the run even where its test would not.
+reports=$build_dir/tsan-reports
+rm -rf "$reports" && mkdir -p "$reports"
+options="halt_on_error=1 second_deadlock_stack=1 exitcode=66 suppressions=$here/suppressions.txt"
 
 # First the canary (canary.cpp): its race must be reported, or a clean run below would prove nothing.
-canary_log=$(mktemp)
-trap 'rm -f "$canary_log"' EXIT
 canary_status=0
-"$build_dir/tests/tsan_canary" >"$canary_log" 2>&1 || canary_status=$?
-if [[ $canary_status -ne 66 ]] || ! grep -q 'WARNING: ThreadSanitizer: data race' "$canary_log" ||
-  ! grep -q 'tests/tsan/canary.cpp' "$canary_log"; then
-  cat "$canary_log" >&2
+TSAN_OPTIONS="$options log_path=$reports/canary" "$build_dir/tests/tsan_canary" >/dev/null 2>&1 ||
+  canary_status=$?
+if [[ $canary_status -ne 66 ]] || ! grep -qs 'WARNING: ThreadSanitizer: data race' "$reports"/canary.* ||
+  ! grep -qs 'tests/tsan/canary.cpp' "$reports"/canary.*; then
+  cat "$reports"/canary.* >&2 || true
   echo "tsan: the canary's race was not reported (exit status $canary_status): the run cannot find races" >&2
   exit 1
 fi
 echo "tsan: the canary's race is reported"
+rm -f "$reports"/canary.*
 
 # What runs threads, and what each test drives:
 # - FilmAccumulate.Concurrent*, FilmSplat.*: the film's accumulation from TBB workers, the splat merge.
@@ -88,7 +91,17 @@ echo "tsan: the canary's race is reported"
 #   build), guided chains, LightMix splats and lookups from camera passes, 2 and 3 workers.
 # - Determinism.*: the CLI end to end with 2 threads, the path tracer and the light tracer (splats from
 #   every worker, merged between iterations).
+# - Interrupt.*: Ctrl-C and SIGTERM while the workers render (path tracer, light tracer, caustics solver):
+#   the cancel flag, the last iteration, the files written after it.
 tests='^(FilmAccumulate\.|FilmSplat\.|CausticsPhotonMap\.TreeIndependentOfThreads$'
 tests+='|CausticsRender\.(SameImageAtAnyThreadCount|GuidedSameImageAtAnyThreadCountAndUniformWithoutGuide'
-tests+='|ElementsAndLightMixSumToBeauty|CausticFreeSceneIsThePathTracer)$|Determinism\.)'
-ctest --test-dir "$build_dir" -R "$tests" --no-tests=error -j 2 --timeout 1200 --output-on-failure "$@"
+tests+='|ElementsAndLightMixSumToBeauty|CausticFreeSceneIsThePathTracer)$|Determinism\.|Interrupt\.)'
+status=0
+TSAN_OPTIONS="$options log_path=$reports/tsan" ctest --test-dir "$build_dir" -R "$tests" --no-tests=error \
+  -j 2 --timeout 1200 --output-on-failure "$@" || status=$?
+if compgen -G "$reports/tsan.*" >/dev/null; then
+  cat "$reports"/tsan.* >&2
+  echo "tsan: ThreadSanitizer reported the races above" >&2
+  exit 1
+fi
+exit "$status"
