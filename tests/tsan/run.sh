@@ -58,10 +58,12 @@ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNIMBUS_T
   -DNIMBUS_BUILD_BENCHMARKS=OFF >/dev/null
 # test_e2e depends on the CLI and the plugins it loads, test_caustics on the solver and its references.
 cmake --build "$build_dir" -j "$jobs" --target tsan_canary test_film test_caustics test_e2e
-if ! ldd "$build_dir/tests/tsan_canary" | grep -q "$tbb_lib/libtbb.so.12"; then
-  echo "tsan: the tests would not load the ThreadSanitizer build of TBB in $tbb_lib" >&2
-  exit 1
-fi
+for binary in tests/tsan_canary tests/test_film tests/test_caustics tests/test_e2e bin/nimbus; do
+  if ! ldd "$build_dir/$binary" | grep -q "$tbb_lib/libtbb.so.12"; then
+    echo "tsan: $binary would not load the ThreadSanitizer build of TBB in $tbb_lib" >&2
+    exit 1
+  fi
+done
 
 # halt_on_error: the first report ends the process with exit status 66, so its test fails. Reports go
 # to files in $reports, one per process, so that one in a subprocess the e2e tests start (the nimbus
