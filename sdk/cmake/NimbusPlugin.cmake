@@ -18,7 +18,7 @@ function(nimbus_add_plugin target)
   target_link_options(${target} PRIVATE
     "LINKER:--version-script=${_NIMBUS_PLUGIN_MAP}" "LINKER:--no-undefined")
   # Sanitizer runtimes are provided by the host executable; allow their symbols to stay undefined.
-  if(NIMBUS_SANITIZE)
+  if(NIMBUS_SANITIZE OR NIMBUS_TSAN)
     target_link_options(${target} PRIVATE "LINKER:--allow-shlib-undefined")
   endif()
   if(ARG_OUTPUT_DIRECTORY)
