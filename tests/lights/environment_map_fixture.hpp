@@ -9,12 +9,16 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace nimbus::testing {
 
 // A 64 x 32 lat-long EXR in the temporary directory (removed by the caller): a ramp in azimuth with a
-// hot spot 10^4 above the rest, as a photographed sky with the sun in it.
+// hot spot 10^4 above the rest, as a photographed sky with the sun in it. The process id goes into the
+// name, so that test runs side by side on one machine never remove each other's file.
 inline std::string write_environment_map(const std::string &name) {
-  const std::string path = (std::filesystem::temp_directory_path() / name).string();
+  const std::string path =
+      (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "-" + name)).string();
   const int w = 64, h = 32;
   std::vector<float> px(size_t(w) * h * 3);
   for (int y = 0; y < h; ++y)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# ThreadSanitizer run of the threaded parts (docs/reliability-tsan.md). Configures and
+# ThreadSanitizer run of the threaded parts (docs/reliability.md). Configures and
 # builds build-tsan (or $NIMBUS_BUILD_DIR) with -DNIMBUS_TSAN=ON, only the targets the selected tests
 # need; builds TBB itself with ThreadSanitizer, from the Debian source of the installed libtbb12; runs
 # a canary race that must be reported, then the selected tests with halt_on_error, so that any report
