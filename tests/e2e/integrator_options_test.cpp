@@ -64,7 +64,7 @@ TEST(IntegratorOptions, UnknownRenderKeyListsTheIntegratorsOptionsAndTheHostKeys
   EXPECT_TRUE(contains(
       r.err,
       "render.threads: nimbus.caustics has no option 'threads' (its options: caustics, photon_emission, "
-      "photon_light_selection, photon_times); "
+      "photon_light_selection, photon_times, photon_memory_mb); "
       "the render section's own keys: resolution, iterations"))
       << r.err;
 }
