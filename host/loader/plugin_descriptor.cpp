@@ -3,7 +3,7 @@
 #include <charconv>
 #include <cstddef>
 
-#include "loader/plugin_text.hpp"
+#include "core/one_line.hpp"
 
 namespace nimbus {
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "loader/plugin_text.hpp"
+#include "core/one_line.hpp"
 
 namespace nimbus {
 namespace {
