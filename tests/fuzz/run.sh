@@ -25,6 +25,7 @@ fi
 nice ninja -C "$build" -j1 "${targets[@]/#/fuzz_}"
 
 out=$build/fuzz
+export LSAN_OPTIONS=suppressions=$src/tests/fuzz/lsan.supp
 rows=()
 for t in "${targets[@]}"; do
   corpus=$out/corpus/$t findings=$out/findings/$t log=$out/$t.log
