@@ -7,7 +7,7 @@
 
 #include "core/limits.hpp"
 #include "core/one_line.hpp"
-#include "film/exr_header.hpp"
+#include "film/image_header.hpp"
 
 namespace nimbus {
 namespace {
@@ -81,7 +81,7 @@ void read_attribute(const OIIO::ParamValue &p, ImageLayers &out) {
 }  // namespace
 
 Expected<ImageLayers> read_exr_layers(const std::string &path) {
-  if (auto problem = exr_header_problem(path)) return Error{"cannot read '" + path + "': " + *problem};
+  if (auto problem = image_header_problem(path)) return Error{"cannot read '" + path + "': " + *problem};
   auto in = OIIO::ImageInput::open(path);
   if (!in) return Error{"cannot read '" + path + "': " + one_line(OIIO::geterror())};
   const OIIO::ImageSpec &spec = in->spec();
