@@ -25,6 +25,7 @@ fi
 nice ninja -C "$build" -j1 "${targets[@]/#/fuzz_}"
 
 out=$build/fuzz
+found=0
 export LSAN_OPTIONS=suppressions=$src/tests/fuzz/lsan.supp
 rows=()
 for t in "${targets[@]}"; do
@@ -43,6 +44,7 @@ for t in "${targets[@]}"; do
   reports=$(grep -cE 'ERROR: (Address|Leak)Sanitizer|runtime error:' "$log" || true)
   rows+=("$t $(stat number_of_executed_units) $(stat average_exec_per_sec) $(count crash) $(count timeout) \
 $(count oom) $(count leak) $reports $status")
+  [ "$status" -eq 0 ] || found=1
 done
 
 printf '\n%-12s %12s %8s %8s %9s %6s %6s %10s %5s\n' target executions exec/s crashes timeouts OOMs leaks \
@@ -51,3 +53,4 @@ for row in "${rows[@]}"; do
   # shellcheck disable=SC2086
   printf '%-12s %12s %8s %8s %9s %6s %6s %10s %5s\n' $row
 done
+exit $found  # non-zero when any target stopped at a finding
