@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/checksum.hpp"
+#include "core/one_line.hpp"
 #include "film/atomic_file.hpp"
 #include "film/checkpoint_io.hpp"
 
@@ -91,7 +92,7 @@ Status read_states(const std::string &path, Reader &r, Stored &s) {
     PluginState st;
     const std::string which = "plugin state #" + std::to_string(k + 1);
     if (!r.str(st.plugin, "the plugin id of " + which) ||
-        !r.blob(st.bytes, "the state of plugin '" + st.plugin + "'"))
+        !r.blob(st.bytes, "the state of plugin '" + shown(st.plugin) + "'"))
       return checkpoint_error(path, r.error());
     s.info.states.push_back(std::move(st));
   }
@@ -114,12 +115,12 @@ Expected<Stored> read_all(const std::string &path) {
   for (uint32_t k = 0; k < count; ++k) {
     StoredElement e;
     const std::string which = "element #" + std::to_string(k + 1);
-    if (!r.str(e.name, "the name of " + which) || !r.u32(e.channels, "element '" + e.name + "'"))
+    if (!r.str(e.name, "the name of " + which) || !r.u32(e.channels, "element '" + shown(e.name) + "'"))
       return checkpoint_error(path, r.error());
     if (e.channels != 1 && e.channels != 3)
       return checkpoint_error(
-          path, "corrupted: element '" + e.name + "' has " + std::to_string(e.channels) + " channels");
-    if (!r.doubles(e.sums, pixels * e.channels, "the sums of element '" + e.name + "'"))
+          path, "corrupted: element '" + shown(e.name) + "' has " + std::to_string(e.channels) + " channels");
+    if (!r.doubles(e.sums, pixels * e.channels, "the sums of element '" + shown(e.name) + "'"))
       return checkpoint_error(path, r.error());
     s.elements.push_back(std::move(e));
   }
@@ -179,7 +180,7 @@ std::string fingerprint_differences(const std::string &stored, const std::string
 std::string element_list(const std::vector<std::pair<std::string, uint32_t>> &elements) {
   std::string out;
   for (const auto &[name, channels] : elements)
-    out += (out.empty() ? "" : ", ") + name + " (" + std::to_string(channels) + ")";
+    out += (out.empty() ? "" : ", ") + shown(name) + " (" + std::to_string(channels) + ")";
   return out;
 }
 
@@ -235,7 +236,7 @@ Status read_checkpoint(Film &film, const std::string &path, CheckpointInfo &info
                                       std::to_string(film.width()) + "x" + std::to_string(film.height()));
   }
   if (s.info.integrator != info.integrator) {
-    return checkpoint_error(path, "it was made with integrator '" + s.info.integrator +
+    return checkpoint_error(path, "it was made with integrator '" + shown(s.info.integrator) +
                                       "'; this render uses '" + info.integrator + "'");
   }
   if (s.info.seed != info.seed) {

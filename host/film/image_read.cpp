@@ -5,8 +5,14 @@
 #include <algorithm>
 #include <array>
 
+#include "core/limits.hpp"
+#include "core/one_line.hpp"
+#include "film/image_header.hpp"
+
 namespace nimbus {
 namespace {
+
+constexpr size_t kBandValues = size_t(1) << 22;  // floats read per band: 16 MB
 
 // Within a layer, R G B (and X Y Z, A last) keep their conventional order whatever order the file
 // stored them in (OpenEXR sorts channels alphabetically); anything else follows alphabetically.
@@ -75,14 +81,36 @@ void read_attribute(const OIIO::ParamValue &p, ImageLayers &out) {
 }  // namespace
 
 Expected<ImageLayers> read_exr_layers(const std::string &path) {
+  if (auto problem = image_header_problem(path)) return Error{"cannot read '" + path + "': " + *problem};
   auto in = OIIO::ImageInput::open(path);
-  if (!in) return Error{"cannot read '" + path + "': " + OIIO::geterror()};
+  if (!in) return Error{"cannot read '" + path + "': " + one_line(OIIO::geterror())};
   const OIIO::ImageSpec &spec = in->spec();
+  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
+    return Error{"cannot read '" + path + "': no pixels"};
+  if (spec.width > kMaxResolution || spec.height > kMaxResolution) {
+    return Error{"cannot read '" + path + "': " + std::to_string(spec.width) + "x" +
+                 std::to_string(spec.height) + " pixels, more than Nimbus renders (" +
+                 std::to_string(kMaxResolution) + " per side)"};
+  }
   const size_t width = static_cast<size_t>(spec.width), height = static_cast<size_t>(spec.height);
   const size_t n = static_cast<size_t>(spec.nchannels);
-  std::vector<float> pixels(width * height * n);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-    return Error{"cannot read '" + path + "': " + in->geterror()};
+  // A band of rows at a time, so that memory follows the pixels the file really holds: its header alone
+  // may claim any size, and a damaged file must fail at its first missing rows.
+  // Tiled files are read in whole rows of tiles (OpenImageIO reads no scanlines from them).
+  const int64_t tile_rows = spec.tile_width > 0 ? std::max(1, spec.tile_height) : 1;
+  const int64_t band_rows = std::max<int64_t>(1, int64_t(kBandValues / (width * n)) / tile_rows) * tile_rows;
+  std::vector<float> pixels, band;
+  for (int64_t y = 0; y < spec.height; y += band_rows) {
+    const int64_t rows = std::min(band_rows, spec.height - y);
+    band.resize(size_t(rows) * width * n);
+    const int first = int(spec.y + y), end = int(spec.y + y + rows);
+    const bool read = spec.tile_width > 0
+                          ? in->read_tiles(0, 0, spec.x, spec.x + spec.width, first, end, spec.z, spec.z + 1,
+                                           0, spec.nchannels, OIIO::TypeDesc::FLOAT, band.data())
+                          : in->read_scanlines(0, 0, first, end, spec.z, 0, spec.nchannels,
+                                               OIIO::TypeDesc::FLOAT, band.data());
+    if (!read) return Error{"cannot read '" + path + "': " + one_line(in->geterror())};
+    pixels.insert(pixels.end(), band.begin(), band.end());
   }
 
   ImageLayers out;

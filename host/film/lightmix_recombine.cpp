@@ -128,7 +128,7 @@ Expected<std::string> recombine_lightmix(ImageLayers &image, const std::vector<L
   std::string description;
   for (const auto &[g, k] : gain) {
     const auto s = std::find_if(settings.begin(), settings.end(),
-                                [&](const LightMixSetting &x) { return x.group == g; });
+                                [&g = g](const LightMixSetting &x) { return x.group == g; });
     description += (description.empty() ? "" : ";") + g + "=";
     if (s == settings.end()) {
       description += "1";

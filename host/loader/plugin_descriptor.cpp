@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cstddef>
 
+#include "core/one_line.hpp"
+
 namespace nimbus {
 namespace {
 
@@ -80,7 +82,7 @@ DescriptorResult read_descriptor(const nimbus_descriptor_t *desc, uint32_t index
   if (desc->id == nullptr) return fail(which + " has no id");
   const std::string id = desc->id;
   if (!is_valid_id(id)) {
-    return fail(which + " has a malformed id '" + id + "' (expected non-empty ASCII without spaces)");
+    return fail(which + " has a malformed id '" + shown(id) + "' (expected non-empty ASCII without spaces)");
   }
   const std::string plugin = "plugin '" + id + "'";
   if (desc->name == nullptr) return fail(plugin + " has no name");
@@ -101,7 +103,7 @@ DescriptorResult read_descriptor(const nimbus_descriptor_t *desc, uint32_t index
   copy.required_services = std::move(*services);
   for (const auto &s : copy.required_services) {
     if (!parse_service_ref(s)) {
-      return fail(plugin + " has a malformed required service '" + s + "' (expected id@revision)");
+      return fail(plugin + " has a malformed required service '" + shown(s) + "' (expected id@revision)");
     }
   }
   auto options = read_option_declarations(*desc);
@@ -125,7 +127,8 @@ std::optional<std::string> check_required_services(const DescriptorCopy &desc, c
   for (const auto &s : desc.required_services) {
     const auto ref = parse_service_ref(s);
     if (ref && can_query && host->get_service(host, ref->id.c_str(), ref->revision) != nullptr) continue;
-    return "plugin '" + desc.id + "' requires host service '" + s + "', which this host does not provide";
+    return "plugin '" + desc.id + "' requires host service '" + shown(s) +
+           "', which this host does not provide";
   }
   return std::nullopt;
 }

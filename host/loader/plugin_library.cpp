@@ -50,7 +50,13 @@ OpenedLibrary open_library(const std::string &path, nimbus_version_t host_abi) {
     lib.error = "no entry symbol '" NIMBUS_PLUGIN_ENTRY_SYMBOL "' (not a Nimbus plugin)";
     return lib;
   }
-  const auto entry_fn = reinterpret_cast<nimbus_plugin_entry_fn>(symbol);
+  OpenedLibrary read = read_entry(reinterpret_cast<nimbus_plugin_entry_fn>(symbol), host_abi);
+  read.handle = lib.handle;
+  return read;
+}
+
+OpenedLibrary read_entry(nimbus_plugin_entry_fn entry_fn, nimbus_version_t host_abi) {
+  OpenedLibrary lib;
   const nimbus_entry_t *entry = entry_fn();
   if (entry == nullptr) {
     lib.error = NIMBUS_PLUGIN_ENTRY_SYMBOL "() returned NULL";

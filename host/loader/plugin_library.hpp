@@ -27,4 +27,8 @@ struct OpenedLibrary {
 // does not search the library path.
 OpenedLibrary open_library(const std::string &path, nimbus_version_t host_abi);
 
+// What open_library does once it has found the entry symbol: calls it and checks the table (no handle).
+// Separate so that the fuzz target can hand it an entry built in-process (tests/fuzz/descriptor_fuzz.cpp).
+OpenedLibrary read_entry(nimbus_plugin_entry_fn entry_fn, nimbus_version_t host_abi);
+
 }  // namespace nimbus

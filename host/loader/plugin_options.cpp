@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/one_line.hpp"
+
 namespace nimbus {
 namespace {
 
@@ -106,7 +108,8 @@ Expected<std::vector<OptionDecl>> read_option_declarations(const nimbus_descript
       const auto def = normalize_option_value(d, o.default_value ? o.default_value : "");
       if (!o.default_value || !def)
         return Error{"option '" + d.name + "' has default '" +
-                     (o.default_value ? o.default_value : "(null)") + "', not " + describe_option_values(d)};
+                     (o.default_value ? shown(o.default_value) : "(null)") + "', not " +
+                     shown(describe_option_values(d))};
       d.default_value = *def;
       decls.push_back(std::move(d));
     }

@@ -73,10 +73,13 @@ void PluginRegistry::load_file(const std::string &path, const nimbus_host_t *hos
   std::error_code ec;
   const fs::path canonical = fs::weakly_canonical(path, ec);
   if (!seen_files_.insert(ec ? path : canonical.string()).second) return;
+  load_opened(path, open_library(path, kHostAbi), host);
+}
 
+void PluginRegistry::load_opened(const std::string &path, const OpenedLibrary &opened,
+                                 const nimbus_host_t *host) {
   PluginRecord base;
   base.path = path;
-  OpenedLibrary opened = open_library(path, kHostAbi);
   if (opened.abi) {
     base.has_abi = true;
     base.abi = *opened.abi;

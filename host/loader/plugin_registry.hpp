@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/expected.hpp"
+#include "loader/plugin_library.hpp"
 #include "loader/plugin_options.hpp"
 
 namespace nimbus {
@@ -65,6 +66,11 @@ class PluginRegistry {
   // by name. The first plugin per id wins. `host_for_checks` answers the required-service checks; NULL
   // provides no services. Files already seen (same canonical path or same loaded library) are skipped.
   void discover(const std::vector<std::string> &dirs, const nimbus_host_t *host_for_checks);
+
+  // What discover() does with each library once open_library has read it: init, every descriptor validated
+  // and its plugin registered or refused, each refusal one warning line. Public so that the fuzz target
+  // can hand it a library built in-process (tests/fuzz/descriptor_fuzz.cpp).
+  void load_opened(const std::string &path, const OpenedLibrary &opened, const nimbus_host_t *host);
 
   const std::vector<PluginRecord> &records() const { return records_; }
   // The loaded plugin `id`, or "nimbus." + id as a short name; nullptr if neither is loaded.

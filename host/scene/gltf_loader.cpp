@@ -9,18 +9,13 @@
 #include <cstring>
 #include <functional>
 
+#include "core/one_line.hpp"
 #include "core/transform.hpp"
 #include "scene/mesh_builders.hpp"
 
 namespace nimbus {
 
 namespace {
-
-std::string one_line(std::string s) {
-  while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
-  for (size_t i = 0; (i = s.find('\n', i)) != std::string::npos;) s.replace(i, 1, "; ");
-  return s;
-}
 
 // Images are only named, never decoded: the scene builder reads textures itself, and a missing image
 // must not make the geometry unreadable.

@@ -8,15 +8,11 @@
 
 #include <tiny_obj_loader.h>
 
+#include "core/one_line.hpp"
+
 namespace nimbus {
 
 namespace {
-
-std::string one_line(std::string s) {
-  while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
-  for (size_t i = 0; (i = s.find('\n', i)) != std::string::npos;) s.replace(i, 1, "; ");
-  return s;
-}
 
 // tinyobjloader's real_t is float or double depending on how the system package was built.
 Vec3f vec3_at(const std::vector<tinyobj::real_t> &values, size_t index) {

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "core/limits.hpp"
 #include "scene/pixel_filter_type.hpp"
 #include "scene/sections.hpp"
 
@@ -11,7 +12,6 @@ namespace nimbus::scene_yaml {
 
 namespace {
 
-constexpr int64_t kMaxResolution = 16384;
 constexpr int64_t kMaxDepth = 1024;
 
 // The render section's own keys; any other key is an option of the bound integrator.
