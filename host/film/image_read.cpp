@@ -7,7 +7,7 @@
 
 #include "core/limits.hpp"
 #include "core/one_line.hpp"
-#include "film/image_header.hpp"
+#include "core/image_header.hpp"
 
 namespace nimbus {
 namespace {

@@ -1,11 +1,15 @@
 // Reading lat-long environment images through OpenImageIO (EXR, HDR, PNG, JPEG...).
 #include <OpenImageIO/imageio.h>
 
+#include "core/image_header.hpp"
+#include "core/limits.hpp"
 #include "lights/light_set.hpp"
 
 namespace nimbus {
 
 Expected<EnvironmentLight> load_environment_map(const std::string &path) {
+  if (auto problem = image_header_problem(path))
+    return Error{path + ": cannot read environment map: " + *problem};
   auto in = OIIO::ImageInput::open(path);
   if (!in) {
     std::string reason = OIIO::geterror();
@@ -15,6 +19,10 @@ Expected<EnvironmentLight> load_environment_map(const std::string &path) {
   const OIIO::ImageSpec &spec = in->spec();
   if (spec.width < 2 || spec.height < 1 || spec.nchannels < 1)
     return Error{path + ": environment map has no pixels"};
+  if (spec.width > kMaxInputImageSide || spec.height > kMaxInputImageSide)
+    return Error{path + ": cannot read environment map: " + std::to_string(spec.width) + "x" +
+                 std::to_string(spec.height) + " pixels, more than " + std::to_string(kMaxInputImageSide) +
+                 " per side"};
   std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
     return Error{path + ": cannot read environment map: " + in->geterror()};

@@ -15,6 +15,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/image_header.hpp"
+#include "core/limits.hpp"
+
 namespace nimbus {
 
 namespace {
@@ -183,6 +186,7 @@ Expected<TextureSet::Id> TextureSet::add(const TextureDesc &desc, Kind kind, int
   if (auto found = impl_->ids.find({desc.path, kind, min_channels}); found != impl_->ids.end())
     return found->second;
   if (std::string reason = unreadable_reason(desc.path); !reason.empty()) return texture_error(desc, reason);
+  if (auto problem = image_header_problem(desc.path)) return texture_error(desc, *problem);
   OIIO::TextureSystem &ts = *impl_->ts;
   const OIIO::ustring file(desc.path);
   if (std::find(impl_->files.begin(), impl_->files.end(), file) == impl_->files.end()) {
@@ -197,6 +201,9 @@ Expected<TextureSet::Id> TextureSet::add(const TextureDesc &desc, Kind kind, int
     return texture_error(desc, first_line(ts.geterror()));
   if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
     return texture_error(desc, "the image has no pixels");
+  if (spec.width > kMaxInputImageSide || spec.height > kMaxInputImageSide)
+    return texture_error(desc, std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                                   " pixels, more than " + std::to_string(kMaxInputImageSide) + " per side");
   if (spec.depth > 1) return texture_error(desc, "volume images are not 2-D textures");
   if (spec.nchannels < min_channels)
     return texture_error(desc, "needs " + std::to_string(min_channels) + " channels, the image has " +

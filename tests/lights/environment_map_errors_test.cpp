@@ -1,5 +1,6 @@
 // A damaged environment map is an error naming the file and the reason, never a crash or a black sky:
-// a file that is not an image, an EXR cut off in its pixel data, and a missing file.
+// a file that is not an image, an EXR cut off in its pixel data, a missing file, and headers claiming
+// sizes the file does not hold.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -43,6 +44,17 @@ TEST(EnvironmentMapErrors, MissingFile) {
   const std::string path = (std::filesystem::temp_directory_path() / "nimbus_env_missing.exr").string();
   std::filesystem::remove(path);
   expect_names_path_and_reason(load_error(path), path);
+}
+
+// Headers that claim more than the file holds or a 100000-pixel side: refused before the image library
+// allocates what they claim (tests/fuzz/image/regressions).
+TEST(EnvironmentMapErrors, HeadersClaimingHugeSizesAreRefusedBeforeAllocating) {
+  const std::string dir = std::string(NIMBUS_SOURCE_DIR) + "/tests/fuzz/image/regressions/";
+  for (const char *name : {"attribute_size_2gib.exr", "png_chunk_length_1.7gib.png", "huge_header.png"}) {
+    const std::string message = load_error(dir + name);
+    expect_names_path_and_reason(message, dir + name);
+    std::printf("%s: %s\n", name, message.c_str());
+  }
 }
 
 }  // namespace

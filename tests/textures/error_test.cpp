@@ -68,6 +68,19 @@ TEST(TextureErrors, CorruptFileNamesTheReason) {
   std::printf("corrupt file: %s\n", message.c_str());
 }
 
+// Headers that claim more than the file holds (an EXR attribute of 2 GiB, a PNG chunk of 1.7 GiB) or a
+// 100000-pixel side: refused before the image library allocates what they claim (inputs the image reader's
+// fuzz target found, tests/fuzz/image/regressions).
+TEST(TextureErrors, HeadersClaimingHugeSizesAreRefusedBeforeAllocating) {
+  const std::string dir = std::string(NIMBUS_SOURCE_DIR) + "/tests/fuzz/image/regressions/";
+  for (const char *name : {"attribute_size_2gib.exr", "png_chunk_length_1.7gib.png", "huge_header.png"}) {
+    const std::string message = add_error(dir + name);
+    EXPECT_TRUE(has_substr(message, dir + name + ": cannot read texture: ")) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+    std::printf("%s: %s\n", name, message.c_str());
+  }
+}
+
 TEST(TextureErrors, TruncatedPixelDataIsFoundAtBuild) {
   // A valid header with half its pixel data: only reading the pixels finds the damage. (EXR rather than
   // PNG: libpng reports a truncated file by longjmp, which skips a destructor inside OIIO and leaks a

@@ -1,4 +1,4 @@
-#include "film/image_header.hpp"
+#include "core/image_header.hpp"
 
 #include <array>
 #include <cstdint>
