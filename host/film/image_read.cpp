@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <array>
 
+#include "core/image_header.hpp"
 #include "core/limits.hpp"
 #include "core/one_line.hpp"
-#include "core/image_header.hpp"
 
 namespace nimbus {
 namespace {
