@@ -15,8 +15,10 @@
 #include "abi/host_services.hpp"
 #include "abi/run_state.hpp"
 #include "core/hash.hpp"
+#include "film/iteration_undo.hpp"
 #include "loader/plugin_registry.hpp"
 #include "render/render_session.hpp"
+#include "render/tiling.hpp"
 #include "scene/scene_parser.hpp"
 #include "world/world.hpp"
 
@@ -105,6 +107,21 @@ void BM_EmbreeClosestHitDefaultScene(benchmark::State &state) {
   state.counters["hit_fraction"] = double(hits) / (double(state.iterations()) * kRays);
 }
 BENCHMARK(BM_EmbreeClosestHitDefaultScene)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// What the iteration undo (film/iteration_undo.hpp) costs an iteration: every tile's sums copied before it
+// is rendered, on the default scene's film (beauty only), on the same thread count as the render. Compare
+// the time per iteration with BM_PathTracerDefaultScene's.
+void BM_IterationUndoDefaultScene(benchmark::State &state) {
+  auto desc = parse_scene_file(kScene);
+  if (!desc) return state.SkipWithError(desc.error().message.c_str());
+  Film film(desc->render.width, desc->render.height);
+  const Tiling tiling = make_tiles(desc->render.width, desc->render.height, desc->render.region);
+  IterationUndo undo(film);
+  for (auto _ : state)
+    tbb::parallel_for(size_t(0), tiling.tiles.size(), [&](size_t t) { undo.save(film, tiling.tiles[t]); });
+  state.counters["bytes_per_iteration"] = double(undo.bytes());
+}
+BENCHMARK(BM_IterationUndoDefaultScene)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace nimbus
