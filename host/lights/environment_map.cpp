@@ -19,10 +19,8 @@ Expected<EnvironmentLight> load_environment_map(const std::string &path) {
   const OIIO::ImageSpec &spec = in->spec();
   if (spec.width < 2 || spec.height < 1 || spec.nchannels < 1)
     return Error{path + ": environment map has no pixels"};
-  if (spec.width > kMaxInputImageSide || spec.height > kMaxInputImageSide)
-    return Error{path + ": cannot read environment map: " + std::to_string(spec.width) + "x" +
-                 std::to_string(spec.height) + " pixels, more than " + std::to_string(kMaxInputImageSide) +
-                 " per side"};
+  if (std::string big = oversized_input_image(spec.width, spec.height); !big.empty())
+    return Error{path + ": cannot read environment map: " + big};
   std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
     return Error{path + ": cannot read environment map: " + in->geterror()};

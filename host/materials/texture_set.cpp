@@ -201,9 +201,8 @@ Expected<TextureSet::Id> TextureSet::add(const TextureDesc &desc, Kind kind, int
     return texture_error(desc, first_line(ts.geterror()));
   if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
     return texture_error(desc, "the image has no pixels");
-  if (spec.width > kMaxInputImageSide || spec.height > kMaxInputImageSide)
-    return texture_error(desc, std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                                   " pixels, more than " + std::to_string(kMaxInputImageSide) + " per side");
+  if (std::string big = oversized_input_image(spec.width, spec.height); !big.empty())
+    return texture_error(desc, big);
   if (spec.depth > 1) return texture_error(desc, "volume images are not 2-D textures");
   if (spec.nchannels < min_channels)
     return texture_error(desc, "needs " + std::to_string(min_channels) + " channels, the image has " +

@@ -25,12 +25,12 @@ class PhotonBudget {
   // Paths a pass may trace: `paths` or fewer, so that the worst case fits. map_bytes_per_photon: of
   // the last map (0 before the first, then an estimate with the index is used).
   uint64_t paths_within(uint64_t paths, double map_bytes_per_photon) const {
-    const double per_photon = std::max(map_bytes_per_photon, 1.5 * sizeof(Photon)) + sizeof(Photon);
-    const double fit = double(bytes_) / (per_photon * double(kPhotonsPerPathCap));
+    const double fit = double(bytes_) / worst_bytes(1, map_bytes_per_photon);
     return std::min<uint64_t>(paths, uint64_t(std::max(fit, 1.0)));
   }
 
-  // The worst-case bytes of a pass of `paths` (for the message that a pass was shrunk).
+  // The worst-case bytes of a pass of `paths`: every path at the guard's cap, each photon in its chunk and
+  // in the map (at least 1.5 photons' size with the index before the first map is measured).
   double worst_bytes(uint64_t paths, double map_bytes_per_photon) const {
     const double per_photon = std::max(map_bytes_per_photon, 1.5 * sizeof(Photon)) + sizeof(Photon);
     return double(paths) * double(kPhotonsPerPathCap) * per_photon;
