@@ -35,12 +35,26 @@ RTCGeometry make_triangle_geometry(RTCDevice device, const MeshData &mesh) {
 
 void set_vec(float out[3], const Vec3f &v) { v.store(out); }
 
+// Embree's robust mode (watertight triangle tests) where the scene needs it. Its cost is 20 % of a path
+// tracer's time (docs/performance.md §1), and its gain is confined to objects far from the origin for
+// their size: there the fast test's cracks at shared edges grow with the coordinates' ulp relative to the
+// object, and a sealed box of size 2 leaks light from 2000 units out (580 times its diagonal;
+// tests/extremes/leak_test.cpp), while near the origin no render has shown a crack at any scale. Robust
+// mode is chosen when some object lies farther from the origin than kRobustBeyond times its own size:
+// nine times below the first leak seen.
+constexpr float kRobustBeyond = 64;
+
+bool far_for_its_size(const Vec3f &lo, const Vec3f &hi) {
+  const float reach = max_component(max(abs(lo), abs(hi)));
+  return reach > kRobustBeyond * length(hi - lo);
+}
+
 // A moving shape: its object-space geometry (released here) in a scene of their own, instanced with one
 // transform per time step (Embree interpolates them at each ray's time, as MotionTransform::at does).
 RTCGeometry make_moving_instance(RTCDevice device, RTCGeometry own, const MotionTransform &motion,
                                  RTCScene &object_scene) {
   object_scene = rtcNewScene(device);
-  rtcSetSceneFlags(object_scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneFlags(object_scene, RTC_SCENE_FLAG_ROBUST);  // moving shapes are rare: no fast path needed
   rtcAttachGeometryByID(object_scene, own, 0);
   rtcReleaseGeometry(own);
   rtcCommitScene(object_scene);
@@ -72,7 +86,6 @@ Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &d
     return Error{"cannot create the Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) +
                  ")"};
   gs->scene_ = rtcNewScene(gs->device_);
-  rtcSetSceneFlags(gs->scene_, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(gs->scene_, RTC_BUILD_QUALITY_HIGH);
 
   gs->shapes_.reserve(desc.shapes.size());  // records are Embree user pointers: no reallocation after this
@@ -124,11 +137,13 @@ Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &d
       gs->object_scenes_.push_back(object_scene);
     } else {
       gs->bounds_min_ = min(gs->bounds_min_, lo), gs->bounds_max_ = max(gs->bounds_max_, hi);
+      gs->robust_ = gs->robust_ || far_for_its_size(lo, hi);
     }
     rtcAttachGeometryByID(gs->scene_, g, uint32_t(gs->shapes_.size() - 1));
     rtcReleaseGeometry(g);
   }
   if (gs->shapes_.empty()) gs->bounds_min_ = gs->bounds_max_ = Vec3f(0);
+  rtcSetSceneFlags(gs->scene_, gs->robust_ ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
   rtcCommitScene(gs->scene_);
   if (const RTCError err = rtcGetDeviceError(gs->device_); err != RTC_ERROR_NONE)
     return Error{"Embree failed to build the scene (error " + std::to_string(int(err)) + ")"};

@@ -35,6 +35,9 @@ class GeometryScene {
   // Builds the BVH. `desc` must outlive the GeometryScene (meshes are referenced, not copied).
   static Expected<std::unique_ptr<GeometryScene>> build(const SceneDesc &desc);
   ~GeometryScene();
+  // Whether Embree runs its watertight (robust) triangle test: some object is far from the origin for its
+  // size.
+  bool watertight() const { return robust_; }
   GeometryScene(const GeometryScene &) = delete;
   GeometryScene &operator=(const GeometryScene &) = delete;
 
@@ -64,6 +67,8 @@ class GeometryScene {
   Vec3f bounds_min_{kInfinity}, bounds_max_{-kInfinity};
   std::vector<RTCScene> object_scenes_;  // the moving meshes' own scenes (instanced)
   bool moves_ = false;
+  bool robust_ =
+      false;  // Embree's watertight triangle test (some object is far from the origin for its size)
   float shutter_open_ = 0, shutter_close_ = 0;  // Embree's ray time [0, 1] spans it
 };
 

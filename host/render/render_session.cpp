@@ -119,6 +119,8 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   auto built = World::build(desc, job.filter);
   if (!built) return built.error();
   const World &world = *built.value();
+  // The main thread runs plugin hooks and the arena's callers like the workers: all flush denormals.
+  const FlushDenormals float_mode;
   RunState run(job.width, job.height, job.threads, job.seed);
   run.cancel = &cancel;
   run.log = [&](int level, const std::string &id, const std::string &msg) {
