@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "geometry/analytic_shapes.hpp"
@@ -200,15 +201,16 @@ bool GeometryScene::occluded(const nimbus_ray_t &ray, float time) const {
 
 void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out,
                                 float time) const {
-  std::memset(&out, 0, sizeof(out));
+  out = nimbus_interaction_t{};
   const ShapeRecord &s = shapes_[hit.geom_id];
   // Analytic shapes are computed where they are defined: a moving one in object space at the ray's time
   // (Embree's instance hit distance t holds there too), carried back to world space below.
   const Vec3f world_dir = Vec3f::load(ray.dir);
   Vec3f org = Vec3f::load(ray.org), dir = world_dir;
-  const Transform to_world = s.motion ? s.motion->at(time) : Transform{};  // evaluated once per hit
+  std::optional<Transform> to_world;  // evaluated once per hit, and only for a moving shape
+  if (s.motion) to_world = s.motion->at(time);
   if (s.motion && (s.type == ShapeType::Sphere || s.type == ShapeType::Disk)) {
-    const Transform to_object = to_world.inverse();
+    const Transform to_object = to_world->inverse();
     org = to_object.point(org), dir = to_object.vector(dir);
   }
   Vec3f p, ng, ns, dpdu, dpdv;
@@ -276,14 +278,19 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       Vec2f uv0{0, 0}, uv1{1, 0}, uv2{1, 1};
       if (!m.uvs.empty()) uv0 = m.uvs[i0], uv1 = m.uvs[i1], uv2 = m.uvs[i2];
       uv = {uv0.x * b0 + uv1.x * b1 + uv2.x * b2, uv0.y * b0 + uv1.y * b1 + uv2.y * b2};
-      const float du1 = uv1.x - uv0.x, du2 = uv2.x - uv0.x, dv1 = uv1.y - uv0.y, dv2 = uv2.y - uv0.y;
-      const float det = du1 * dv2 - dv1 * du2;
-      if (std::abs(det) > 1e-12f) {
-        dpdu = (e1 * dv2 - e2 * dv1) / det;
-        dpdv = (e2 * du1 - e1 * du2) / det;
+      if (m.uvs.empty()) {
+        // The general solve below with these default uvs (det = 1), without its division.
+        dpdu = e1, dpdv = e2 - e1;
       } else {
-        const Frame f = Frame::from_normal(ng);
-        dpdu = f.s, dpdv = f.t;
+        const float du1 = uv1.x - uv0.x, du2 = uv2.x - uv0.x, dv1 = uv1.y - uv0.y, dv2 = uv2.y - uv0.y;
+        const float det = du1 * dv2 - dv1 * du2;
+        if (std::abs(det) > 1e-12f) {
+          dpdu = (e1 * dv2 - e2 * dv1) / det;
+          dpdv = (e2 * du1 - e1 * du2) / det;
+        } else {
+          const Frame f = Frame::from_normal(ng);
+          dpdu = f.s, dpdv = f.t;
+        }
       }
       ns = ng;
       if (!m.normals.empty()) {
@@ -295,7 +302,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
   }
   if (s.motion) {
     // The object-space surface at the ray's time; the transform's own rounding joins the error bound.
-    const Transform &m = to_world;
+    const Transform &m = *to_world;
     Vec3f moved_error;
     for (int r = 0; r < 3; ++r) {  // pbrt-v4 6.8.6: the carried error through |M|, plus the product's own
       float carried = 0, own = std::abs(m(r, 3));
