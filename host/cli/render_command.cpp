@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -229,6 +230,7 @@ int render_command(const std::vector<std::string> &argv) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
+  const auto loading = std::chrono::steady_clock::now();  // the time to first pixel starts here
   auto scene = parse_scene_file(a.scene);
   if (!scene) {
     std::fprintf(stderr, "%s\n", scene.error().message.c_str());
@@ -281,6 +283,7 @@ int render_command(const std::vector<std::string> &argv) {
   sigaction(SIGTERM, &sa, nullptr);
 
   ProgressDisplay display(stderr, isatty(STDERR_FILENO) != 0, a.quiet);
+  a.options.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - loading).count();
   auto result = render(
       desc, a.options, registry, g_cancel, [&](const RenderProgress &p) { display.update(p); },
       [&](int level, const std::string &line) {

@@ -119,6 +119,7 @@ LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &p, Ru
     // The iteration's samples are all in: they count even when its end_iteration fails.
     film.end_iteration();
     out.done = i;
+    if (i == out.resumed_from + 1) out.first_iteration_seconds = seconds_since(t0);
     if (s != NIMBUS_OK) {
       out.failure = s, out.failure_hook = "end_iteration";
       break;

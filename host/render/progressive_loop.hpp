@@ -21,9 +21,10 @@
 namespace nimbus {
 
 struct LoopOutcome {
-  uint64_t resumed_from = 0;  // iterations the film held before the loop
-  uint64_t done = 0;          // iterations it holds after
-  double seconds = 0;         // render time since this run started or resumed
+  uint64_t resumed_from = 0;           // iterations the film held before the loop
+  uint64_t done = 0;                   // iterations it holds after
+  double seconds = 0;                  // render time since this run started or resumed
+  double first_iteration_seconds = 0;  // of this run's first iteration (0 when none finished)
   bool cancelled = false;
   bool reached_target = false;
   double estimated_error = -1;  // the last estimate with an error target

@@ -80,6 +80,7 @@ Expected<RenderJob> resolve_job(const SceneDesc &scene, const RenderOptions &opt
   std::copy(r.region, r.region + 4, job.region);
   job.seed = options.seed.value_or(r.seed);
   job.threads = options.threads;
+  job.load_seconds = options.load_seconds;
   job.max_depth = r.max_depth;
   job.filter = options.filter.value_or(r.filter);
   job.stop = stop_rules(r, options);

@@ -41,6 +41,8 @@ struct RenderOptions {
   // render of 3 resumed with iterations = 6 renders iterations 4 to 6 and equals, bit for bit, a render
   // of 6. A checkpoint already holding that many iterations just rewrites the output files.
   bool resume = false;
+  double load_seconds =
+      0;  // what reading the scene and loading plugins took the caller (time to first pixel)
 };
 
 // Scenes with more lights than this get the many-light tree by default.
@@ -81,6 +83,7 @@ struct RenderJob {
   std::string checkpoint_path;
   double checkpoint_interval_seconds = 300;
   bool resume = false;
+  double load_seconds = 0;  // RenderOptions::load_seconds
 
   // The light sampler to bind for a world of `light_count` lights.
   std::string light_sampler_for(uint32_t light_count) const;

@@ -66,6 +66,13 @@ Status write_outputs(const RenderJob &job, const Film &film, const RenderFacts &
     nmeta.push_back({"estimated_relmse", *facts.estimated_relmse});
   }
   if (facts.resumed_from) nmeta.push_back({"resumed_from", double(*facts.resumed_from)});
+  if (facts.first_iteration_seconds) {
+    nmeta.push_back({"load_seconds", facts.load_seconds});
+    nmeta.push_back({"setup_seconds", facts.setup_seconds});
+    nmeta.push_back({"first_iteration_seconds", *facts.first_iteration_seconds});
+    nmeta.push_back(
+        {"time_to_first_pixel", facts.load_seconds + facts.setup_seconds + *facts.first_iteration_seconds});
+  }
   for (const auto &[k, v] : facts.stats) nmeta.push_back({"stat:" + k, v});
   if (Status s = film.write_exr(job.exr_path, smeta, nmeta); !s) return s.error();
   return film.write_png(job.png_path, job.ocio_config);

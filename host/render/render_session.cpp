@@ -1,5 +1,6 @@
 #include "render/render_session.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -24,8 +25,11 @@ namespace nimbus {
 namespace {
 
 RenderFacts facts_of(const RenderJob &job, const BoundPlugins &plugins, RunState &run,
-                     const LoopOutcome &loop, double previous_seconds) {
+                     const LoopOutcome &loop, double previous_seconds, double setup_seconds) {
   RenderFacts f;
+  f.load_seconds = job.load_seconds;
+  f.setup_seconds = setup_seconds;
+  if (loop.done > loop.resumed_from) f.first_iteration_seconds = loop.first_iteration_seconds;
   f.integrator = plugins.integrator.id();
   f.light_sampler = plugins.sampler.id();
   f.guide = plugins.guide.id();
@@ -94,7 +98,7 @@ struct Rescue {
       LoopOutcome loop;
       loop.done = image->iterations();
       loop.failure = NIMBUS_E_INTERNAL;
-      RenderFacts facts = facts_of(*job, *plugins, *run, loop, 0);
+      RenderFacts facts = facts_of(*job, *plugins, *run, loop, 0, 0);
       const Status written = write_outputs(*job, *image, facts);
       text += written ? "the image of its " + std::to_string(loop.done) +
                             " complete iterations was written to " + job->exr_path
@@ -113,6 +117,7 @@ struct Rescue {
 Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &options, PluginRegistry &registry,
                               std::atomic<bool> &cancel, const ProgressFn &progress,
                               const MessageFn &message) {
+  const auto started = std::chrono::steady_clock::now();
   const auto resolved = resolve_job(desc, options);
   if (!resolved) return resolved.error();
   const RenderJob &job = resolved.value();
@@ -175,6 +180,8 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   rescue.undo.store(&undo);
   rescue.tiling.store(&tiling);
 
+  const double setup_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const LoopOutcome loop =
       run_progressive_loop(job, plugins, run, tiling, undo, checkpoint, progress, message);
 
@@ -191,7 +198,7 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   result.checkpoint_path = checkpoint.saved_path();
   result.exr_path = job.exr_path;
   result.png_path = job.png_path;
-  const RenderFacts facts = facts_of(job, plugins, run, loop, checkpoint.previous_seconds());
+  const RenderFacts facts = facts_of(job, plugins, run, loop, checkpoint.previous_seconds(), setup_seconds);
   if (Status s = write_outputs(job, film, facts); !s) return write_elsewhere(job, film, facts, s.error());
   if (!checkpointed)
     return Error{checkpointed.error().message + " (the image was written to " + result.exr_path + ")"};

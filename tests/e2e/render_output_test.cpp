@@ -46,6 +46,17 @@ TEST(RenderOutput, TinySceneWritesExrWithMetadataAndPngPreview) {
   const std::optional<double> seconds = meta_number(*img, "nimbus:seconds");
   ASSERT_TRUE(seconds) << "nimbus:seconds missing";
   EXPECT_TRUE(std::isfinite(*seconds) && *seconds >= 0) << *seconds;
+  // The time to first pixel and its parts: loading, setting up, the first of the 4 iterations.
+  const auto load = meta_number(*img, "nimbus:load_seconds"),
+             setup = meta_number(*img, "nimbus:setup_seconds"),
+             first = meta_number(*img, "nimbus:first_iteration_seconds"),
+             ttfp = meta_number(*img, "nimbus:time_to_first_pixel");
+  ASSERT_TRUE(load && setup && first && ttfp) << "time to first pixel missing";
+  EXPECT_GT(*load, 0);
+  EXPECT_GT(*setup, 0);
+  EXPECT_GT(*first, 0);
+  EXPECT_LE(*first, *seconds);
+  EXPECT_NEAR(*ttfp, *load + *setup + *first, 1e-9 * *ttfp);
 
   // The preview: same stem, 8-bit RGB, same size, not black.
   const std::string png = dir.file("box.png");
