@@ -70,6 +70,8 @@ class YamlValue {
   SourceLocation location() const;
   const SceneSource &source() const { return *source_; }
   [[noreturn]] void fail(std::string_view message) const;
+  // The line of a warning about this value, formatted as fail() formats an error (SceneDesc::warnings).
+  std::string warning(std::string_view message) const;
 
   bool is_null() const { return node_.IsNull(); }
   bool is_map() const { return node_.IsMap(); }
