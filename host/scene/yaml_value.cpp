@@ -257,11 +257,12 @@ std::optional<YamlValue> YamlMap::get(std::string_view key) const {
   return e ? std::optional<YamlValue>(e->value) : std::nullopt;
 }
 
-YamlValue YamlMap::require(std::string_view key) const {
+YamlValue YamlMap::require(std::string_view key, std::string_view why) const {
   const Entry *e = find(key);
   if (!e) {
-    throw ParseFailure{format_error(self_.source().display_name, self_.line(), self_.column(),
-                                    child_path(key), "missing required key '" + std::string(key) + "'")};
+    throw ParseFailure{format_error(
+        self_.source().display_name, self_.line(), self_.column(), child_path(key),
+        "missing required key '" + std::string(key) + "'" + (why.empty() ? "" : ": " + std::string(why)))};
   }
   return e->value;
 }
