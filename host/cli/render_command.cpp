@@ -237,6 +237,7 @@ int render_command(const std::vector<std::string> &argv) {
     return kExitFailure;
   }
   SceneDesc &desc = scene.value();
+  for (const std::string &warning : desc.warnings) std::fprintf(stderr, "%s\n", warning.c_str());
   for (auto &o : a.integrator_options) desc.render.options.push_back(std::move(o));
   if (a.region) {
     if ((*a.region)[2] > desc.render.width || (*a.region)[3] > desc.render.height) {

@@ -14,31 +14,12 @@
 
 namespace nimbus::scene_yaml {
 
-namespace {
-
-bool name_taken(const std::vector<MaterialDesc> &materials, const std::string &name) {
-  return std::any_of(materials.begin(), materials.end(),
-                     [&](const MaterialDesc &m) { return m.name == name; });
-}
-
-Rgb unit_clamped(const Rgb &c) {
-  return {std::clamp(c.x, 0.0f, 1.0f), std::clamp(c.y, 0.0f, 1.0f), std::clamp(c.z, 0.0f, 1.0f)};
-}
-
-}  // namespace
-
 uint32_t gltf_material(const GltfMaterial &g, const LoadedMesh &mesh, const YamlValue &where,
                        ObjectContext &context) {
-  const std::string key = mesh.file + "#" + std::to_string(g.index);
-  if (auto it = context.gltf_materials.find(key); it != context.gltf_materials.end()) return it->second;
-
   MaterialDesc mat;
-  const std::string base =
-      g.name.empty() ? std::filesystem::path(mesh.file).filename().string() + "#" + std::to_string(g.index)
-                     : g.name;
-  mat.name = base;
-  for (int suffix = 2; name_taken(context.materials, mat.name); ++suffix)
-    mat.name = base + "-" + std::to_string(suffix);
+  mat.name = g.name.empty()
+                 ? std::filesystem::path(mesh.file).filename().string() + "#" + std::to_string(g.index)
+                 : g.name;
   mat.where = where.location();
   if (g.metallic > 0.5f) {
     mat.type = MaterialType::Conductor;
@@ -54,10 +35,7 @@ uint32_t gltf_material(const GltfMaterial &g, const LoadedMesh &mesh, const Yaml
       mat.albedo_texture.where = where.location();
     }
   }
-  const auto index = uint32_t(context.materials.size());
-  context.materials.push_back(std::move(mat));
-  context.gltf_materials.emplace(key, index);
-  return index;
+  return add_file_material(mesh.file + "#" + std::to_string(g.index), std::move(mat), context);
 }
 
 }  // namespace nimbus::scene_yaml

@@ -58,6 +58,34 @@ void transform_mesh(MeshData &mesh, const Transform &transform) {
       std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
 }
 
+MeshData submesh(const MeshData &mesh, const std::vector<uint32_t> &triangles) {
+  MeshData out;
+  constexpr uint32_t kUnused = UINT32_MAX;
+  std::vector<uint32_t> new_index(mesh.positions.size(), kUnused);
+  std::vector<uint32_t> kept;  // the old index of each new vertex
+  out.indices.reserve(3 * triangles.size());
+  for (uint32_t t : triangles)
+    for (size_t c = 3 * size_t(t); c < 3 * size_t(t) + 3; ++c) {
+      uint32_t &v = new_index[mesh.indices[c]];
+      if (v == kUnused) v = uint32_t(kept.size()), kept.push_back(mesh.indices[c]);
+      out.indices.push_back(v);
+    }
+  const auto pick = [&]<class T>(const std::vector<T> &all) {
+    std::vector<T> some;
+    if (all.empty()) return some;  // an attribute the mesh does not have
+    some.reserve(kept.size());
+    for (uint32_t v : kept) some.push_back(all[v]);
+    return some;
+  };
+  out.positions = pick(mesh.positions);
+  out.normals = pick(mesh.normals);
+  out.uvs = pick(mesh.uvs);
+  for (const std::vector<Vec3f> &step : mesh.position_steps) out.position_steps.push_back(pick(step));
+  for (const std::vector<Vec3f> &step : mesh.normal_steps) out.normal_steps.push_back(pick(step));
+  out.steps_open = mesh.steps_open, out.steps_close = mesh.steps_close;
+  return out;
+}
+
 std::optional<float> similarity_scale(const Transform &t) {
   const Vec3f c0{t(0, 0), t(1, 0), t(2, 0)}, c1{t(0, 1), t(1, 1), t(2, 1)}, c2{t(0, 2), t(1, 2), t(2, 2)};
   const float s0 = length(c0), s1 = length(c1), s2 = length(c2);

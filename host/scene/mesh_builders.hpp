@@ -1,7 +1,10 @@
-// Triangle meshes for the built-in flat shapes, and moving meshes into world space. Pure geometry, no YAML.
+// Triangle meshes for the built-in flat shapes, moving meshes into world space and cutting parts out of
+// them. Pure geometry, no YAML.
 #pragma once
 
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "core/transform.hpp"
 #include "scene/scene_desc.hpp"
@@ -20,6 +23,10 @@ MeshData box_mesh(const Vec3f &size);
 // (negative determinant) would turn every triangle's geometric normal inward, so the winding is reversed
 // to keep "outward stays outward".
 void transform_mesh(MeshData &mesh, const Transform &transform);
+
+// Triangles `triangles` of `mesh` (triangle i: indices 3i .. 3i + 2) as a mesh of their own, with only
+// the vertices they use and those vertices' normals, uvs and deformation steps; order kept.
+MeshData submesh(const MeshData &mesh, const std::vector<uint32_t> &triangles);
 
 // The uniform scale factor if the linear part is a scaled rotation (possibly mirrored), else nothing.
 // Spheres and disks stay spheres and disks only under such similarities.

@@ -28,11 +28,14 @@ std::shared_ptr<const LoadedMesh> MeshLibrary::load(const YamlValue &file) {
   mesh->file = key.string();
   std::string reason;
   if (ext == ".obj") {
-    Expected<MeshData> obj = load_obj_mesh(path, file.source().log);
-    if (obj)
-      mesh->mesh = std::move(obj).value();
-    else
+    Expected<ObjMesh> obj = load_obj_mesh(path, file.source().log);
+    if (obj) {
+      mesh->mesh = std::move(obj->mesh);
+      mesh->parts = std::move(obj->parts);
+      mesh->obj_materials = std::move(obj->materials);
+    } else {
       reason = obj.error().message;
+    }
   } else if (ext == ".gltf" || ext == ".glb") {
     Expected<GltfMesh> gltf = load_gltf_mesh(path, file.source().log);
     if (gltf) {

@@ -8,18 +8,26 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "scene/gltf_loader.hpp"
+#include "scene/obj_loader.hpp"
 #include "scene/scene_desc.hpp"
 #include "scene/yaml_value.hpp"
 
 namespace nimbus::scene_yaml {
 
-// A mesh in its own coordinates, with the material a glTF file gives it (OBJ files give none).
+// A mesh in its own coordinates, with the material a glTF file gives it or the faces and .mtl materials
+// of an OBJ file.
 struct LoadedMesh {
   MeshData mesh;
   std::optional<GltfMaterial> material;
-  std::string file;  // absolute path of the file it came from; empty when written inline
+  std::vector<ObjPart> parts;  // OBJ files only
+  ObjMaterials obj_materials;  // OBJ files only
+  std::string file;            // absolute path of the file it came from; empty when written inline
+  // Whether the OBJ file names .mtl materials (even ones that cannot be used): an object without
+  // `material:` then takes them.
+  bool has_obj_materials() const { return !obj_materials.materials.empty() || !obj_materials.error.empty(); }
 };
 
 class MeshLibrary {

@@ -1,6 +1,7 @@
 // `objects:` — a list of shapes with a material, an optional transform and optional emission. Transforms
 // are applied here, so every ShapeDesc leaves the parser in world space. Meshes, instances of named meshes
-// and subdivision surfaces all become ShapeType::Mesh: triangles, each object with its own copy.
+// and subdivision surfaces all become ShapeType::Mesh: triangles, each object with its own copy (an OBJ
+// mesh that takes its .mtl materials: one per material).
 #include <cmath>
 #include <string>
 #include <vector>
@@ -49,7 +50,8 @@ float uniform_scale(const Transform &t, const YamlValue &transform, std::string_
       format_number(scales.x) + ", " + format_number(scales.y) + ", " + format_number(scales.z) + ")");
 }
 
-ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
+// One shape, or several for an OBJ file whose .mtl materials give its faces different materials.
+std::vector<ShapeDesc> read_object(const YamlValue &object, ObjectContext &context) {
   const YamlMap m = object.map();
   const YamlValue shape_value = m.require("shape");
   const std::string shape = shape_value.string();
@@ -97,17 +99,22 @@ ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
   const std::optional<YamlValue> transform_value = m.get("transform");
   const Transform transform = transform_value ? read_transform(*transform_value) : Transform();
 
-  // Meshes from files and names first: a glTF mesh brings a material for objects that name none.
+  // Meshes from files and names first: a glTF or OBJ mesh brings materials for objects that name none.
   std::shared_ptr<const LoadedMesh> loaded;
   if (shape == "mesh") loaded = read_mesh(m, context.meshes);
   if (shape == "instance") loaded = context.meshes.find(m.require("mesh"));
+  const std::optional<YamlValue> named_by = loaded ? m.get(shape == "mesh" ? "file" : "mesh") : std::nullopt;
+  const bool obj_materials = !m.has("material") && named_by && loaded->has_obj_materials();
   if (auto v = m.get("material"))
     s.material = find_material(*v, context.materials);
   else if (loaded && loaded->material)
-    s.material =
-        gltf_material(*loaded->material, *loaded, m.require(shape == "mesh" ? "file" : "mesh"), context);
-  else
-    s.material = find_material(m.require("material"), context.materials);
+    s.material = gltf_material(*loaded->material, *loaded, *named_by, context);
+  else if (!obj_materials)
+    s.material = find_material(
+        m.require("material", named_by && !loaded->parts.empty()
+                                  ? "'" + loaded->file + "' names no .mtl materials (mtllib) to take instead"
+                                  : ""),
+        context.materials);
 
   if (motion_value) {
     const bool analytic = s.type == ShapeType::Sphere || s.type == ShapeType::Disk;
@@ -157,7 +164,8 @@ ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
   }
   if (!is_finite(s.center) || !std::isfinite(s.radius))
     (transform_value ? *transform_value : object).fail("the transformed shape overflows");
-  return s;
+  if (obj_materials) return obj_material_shapes(std::move(s), *loaded, m, *named_by, context);
+  return {std::move(s)};
 }
 
 }  // namespace
@@ -165,7 +173,8 @@ ShapeDesc read_object(const YamlValue &object, ObjectContext &context) {
 std::vector<ShapeDesc> read_objects(const YamlValue &section, ObjectContext &context) {
   std::vector<ShapeDesc> out;
   if (section.is_null()) return out;
-  for (const YamlValue &object : section.sequence()) out.push_back(read_object(object, context));
+  for (const YamlValue &object : section.sequence())
+    for (ShapeDesc &s : read_object(object, context)) out.push_back(std::move(s));
   return out;
 }
 

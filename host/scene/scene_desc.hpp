@@ -189,6 +189,9 @@ struct SceneDesc {
   std::vector<ShapeDesc> shapes;
   std::vector<LightDesc> lights;
   EnvironmentDesc environment;
+  // What the scene asks for that Nimbus does not do but can leave out, one line each, formatted like the
+  // parser's errors with "warning" in place of "error" (e.g. the .mtl statements it ignores).
+  std::vector<std::string> warnings;
 };
 
 }  // namespace nimbus

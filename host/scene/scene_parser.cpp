@@ -62,7 +62,8 @@ SceneDesc read_scene(const YAML::Node &document, const SceneSource &source) {
   each("lights",
        [&](const YamlValue &v) { append(scene.lights, scene_yaml::read_lights(v, scene.camera.shutter)); });
   if (auto v = main.get("environment")) scene.environment = scene_yaml::read_environment(*v, scene.lights);
-  scene_yaml::ObjectContext objects{scene.materials, meshes, scene.camera, scene.render, {}};
+  scene_yaml::ObjectContext objects{
+      scene.materials, meshes, scene.camera, scene.render, scene.warnings, {}, {}};
   each("objects", [&](const YamlValue &v) { append(scene.shapes, scene_yaml::read_objects(v, objects)); });
   return scene;
 }

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -15,15 +16,19 @@
 
 namespace nimbus::scene_yaml {
 
-// What objects refer to: materials by name (glTF objects without `material:` add their file's material),
-// named and file meshes, and the camera and resolution (for `level: auto` of subdivision surfaces).
+// What objects refer to: materials by name (glTF and OBJ objects without `material:` add their file's
+// materials), named and file meshes, and the camera and resolution (for `level: auto` of subdivision
+// surfaces); and where warnings go.
 struct ObjectContext {
   std::vector<MaterialDesc> &materials;
   MeshLibrary &meshes;
   const CameraDesc &camera;
   const RenderDesc &render;
-  // Materials made from glTF materials, by "<absolute file>#<material index>": made once, shared.
-  std::map<std::string, uint32_t> gltf_materials;
+  std::vector<std::string> &warnings;  // SceneDesc::warnings
+  // Materials made from a mesh file's materials, by "<absolute file>#<material>": made once, shared.
+  std::map<std::string, uint32_t> file_materials;
+  // The files (OBJ and .mtl) already warned about: one warning each however many objects use them.
+  std::set<std::string> warned;
 };
 
 RenderDesc read_render(const YamlValue &section);                    // render_section.cpp
@@ -65,10 +70,26 @@ std::shared_ptr<const LoadedMesh> read_mesh(const YamlMap &object, MeshLibrary &
 MeshData read_subdivision(const YamlMap &object, const Transform &to_world, const CameraDesc &camera,
                           const RenderDesc &render);
 
+// A material made from a mesh file's, added to context.materials once per `key` ("<absolute
+// file>#<material>"; later calls return the first index): its name made unique against the scene's
+// names by a "-2", "-3", ... suffix.                                          // file_material.cpp
+uint32_t add_file_material(const std::string &key, MaterialDesc material, ObjectContext &context);
+// Colours of mesh files are clamped to [0, 1] like written ones.             // file_material.cpp
+Rgb unit_clamped(const Rgb &color);
+
 // The scene material for a glTF material (see gltf_material.cpp for the mapping), made once per file and
 // material and appended to context.materials; returns its index. `where` is the value that named the mesh
 // (`file:` or `mesh:`), which the material's location and texture key refer to.   // gltf_material.cpp
 uint32_t gltf_material(const GltfMaterial &material, const LoadedMesh &mesh, const YamlValue &where,
                        ObjectContext &context);
+
+// The shapes of an object without `material:` whose OBJ file names .mtl materials: `shape` (complete, in
+// world space) split by material, each part with its scene material (see obj_material.cpp for the mapping;
+// made once per file and material) and the emission its `Ke` gives unless the object gives `emission:`.
+// `object` is the object's map; `where` the value that named the mesh (`file:` or `mesh:`), at which
+// unusable materials fail and the warning about ignored statements (once per file) points.
+//                                                                            // obj_material.cpp
+std::vector<ShapeDesc> obj_material_shapes(ShapeDesc shape, const LoadedMesh &mesh, const YamlMap &object,
+                                           const YamlValue &where, ObjectContext &context);
 
 }  // namespace nimbus::scene_yaml

@@ -1,8 +1,8 @@
 // The files a scene is made from. Every file the parser reads (the scene file, included files, OBJ and
-// glTF meshes with the buffers and images their loaders pull in, subdivision cages) is read through one
-// SourceLog, which keeps its path and a hash of its bytes: SceneDesc::sources, what a checkpoint's
-// fingerprint is made of, so that editing any of them is noticed. Textures and environment maps are
-// opened when the world is built, not by the parser, and are not in it.
+// glTF meshes with the .mtl files, buffers and images their loaders pull in, subdivision cages) is read
+// through one SourceLog, which keeps its path and a hash of its bytes: SceneDesc::sources, what a
+// checkpoint's fingerprint is made of, so that editing any of them is noticed. Textures and environment maps
+// are opened when the world is built, not by the parser, and are not in it.
 #pragma once
 
 #include <cstdint>

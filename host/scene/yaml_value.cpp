@@ -33,6 +33,18 @@ std::optional<double> parse_double(std::string_view s) {
   return x;
 }
 
+std::string format_line(std::string_view file, int line, int column, std::string_view severity,
+                        std::string_view what, std::string_view message) {
+  std::string out(file);
+  if (line > 0) out += ":" + std::to_string(line) + ":" + std::to_string(column);
+  out += ": " + std::string(severity) + ": ";
+  if (!what.empty()) out += std::string(what) + ": ";
+  out += message;
+  // One message, one line: a multi-line reason from a library would break the format.
+  std::replace(out.begin(), out.end(), '\n', ' ');
+  return out;
+}
+
 std::string join_path(const std::string &parent, std::string_view key) {
   return parent.empty() ? abbreviate(key) : parent + "." + abbreviate(key);
 }
@@ -54,14 +66,11 @@ std::filesystem::path SceneSource::resolve(const std::string &relative_or_absolu
 
 std::string format_error(std::string_view file, int line, int column, std::string_view what,
                          std::string_view message) {
-  std::string out(file);
-  if (line > 0) out += ":" + std::to_string(line) + ":" + std::to_string(column);
-  out += ": error: ";
-  if (!what.empty()) out += std::string(what) + ": ";
-  out += message;
-  // One error, one line: a multi-line reason from a library would break the format.
-  std::replace(out.begin(), out.end(), '\n', ' ');
-  return out;
+  return format_line(file, line, column, "error", what, message);
+}
+
+std::string YamlValue::warning(std::string_view message) const {
+  return format_line(source_->display_name, line(), column(), "warning", path_, message);
 }
 
 std::string format_number(double x) {
@@ -248,11 +257,12 @@ std::optional<YamlValue> YamlMap::get(std::string_view key) const {
   return e ? std::optional<YamlValue>(e->value) : std::nullopt;
 }
 
-YamlValue YamlMap::require(std::string_view key) const {
+YamlValue YamlMap::require(std::string_view key, std::string_view why) const {
   const Entry *e = find(key);
   if (!e) {
-    throw ParseFailure{format_error(self_.source().display_name, self_.line(), self_.column(),
-                                    child_path(key), "missing required key '" + std::string(key) + "'")};
+    throw ParseFailure{format_error(
+        self_.source().display_name, self_.line(), self_.column(), child_path(key),
+        "missing required key '" + std::string(key) + "'" + (why.empty() ? "" : ": " + std::string(why)))};
   }
   return e->value;
 }

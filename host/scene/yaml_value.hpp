@@ -70,6 +70,8 @@ class YamlValue {
   SourceLocation location() const;
   const SceneSource &source() const { return *source_; }
   [[noreturn]] void fail(std::string_view message) const;
+  // The line of a warning about this value, formatted as fail() formats an error (SceneDesc::warnings).
+  std::string warning(std::string_view message) const;
 
   bool is_null() const { return node_.IsNull(); }
   bool is_map() const { return node_.IsMap(); }
@@ -124,8 +126,9 @@ class YamlMap {
   const std::vector<Entry> &entries() const { return entries_; }
   bool has(std::string_view key) const { return find(key) != nullptr; }
   std::optional<YamlValue> get(std::string_view key) const;
-  // A key that must be present; a missing one is reported at the position of this map.
-  YamlValue require(std::string_view key) const;
+  // A key that must be present; a missing one is reported at the position of this map, followed by `why`
+  // when given.
+  YamlValue require(std::string_view key, std::string_view why = {}) const;
   // The key node, for errors that are about the key's presence (e.g. conflicting keys).
   const YamlValue &key(std::string_view key) const;
   // Fails at the first key (in document order) that is not in `allowed`. `context` qualifies the list,

@@ -54,7 +54,10 @@ std::optional<std::string> scene_error(std::string_view yaml) {
   const std::string path = (scratch_dir() / "scene.yaml").string();
   write_file(path, yaml);
   const Expected<SceneDesc> scene = parse_scene_file(path);
-  if (scene) return std::nullopt;
+  if (scene) {
+    for (const std::string &warning : scene->warnings) check_error_line(warning, path);
+    return std::nullopt;
+  }
   check_error_line(scene.error().message, path);
   return scene.error().message;
 }

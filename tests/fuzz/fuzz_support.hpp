@@ -28,8 +28,9 @@ std::vector<std::string> split_parts(const uint8_t *data, size_t size, std::stri
 void check_error_line(const std::string &message, const std::string &path);
 
 // Writes `yaml` to scene.yaml in the scratch directory and reads it with parse_scene_file: the error
-// message (checked by check_error_line to name scene.yaml), or nullopt when the scene loads. For the
-// readers whose own errors hold only the reason, to which the scene adds its position and the path.
+// message (checked by check_error_line to name scene.yaml), or nullopt when the scene loads (its warnings
+// checked the same way). For the readers whose own errors hold only the reason, to which the scene adds
+// its position and the path.
 std::optional<std::string> scene_error(std::string_view yaml);
 
 // Aborts with `what` on stderr unless `condition` holds.

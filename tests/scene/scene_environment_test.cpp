@@ -6,12 +6,6 @@
 namespace nimbus::test {
 namespace {
 
-void expect_vec(const Vec3f &actual, const Vec3f &expected, float tolerance = 1e-5f) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
-
 TEST(SceneEnvironment, NoneByDefault) {
   EXPECT_EQ(parse_ok("render: { seed: 1 }\n").environment.type, EnvironmentType::None);
   EXPECT_EQ(parse_ok("environment:\n").environment.type, EnvironmentType::None);

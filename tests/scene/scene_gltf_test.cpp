@@ -10,12 +10,6 @@
 namespace nimbus::test {
 namespace {
 
-void expect_vec(const Vec3f &actual, const Vec3f &expected, float tolerance = 1e-5f) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
-
 std::string base64(const std::vector<unsigned char> &bytes) {
   static const char *digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;

@@ -9,12 +9,6 @@
 namespace nimbus::test {
 namespace {
 
-void expect_vec(const Vec3f &actual, const Vec3f &expected, float tolerance = 1e-5f) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
-
 // By value: callers pass the temporary scene of parse_ok.
 LightDesc only_light(const SceneDesc &scene) {
   EXPECT_EQ(scene.lights.size(), 1u);

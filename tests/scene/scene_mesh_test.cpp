@@ -8,12 +8,6 @@
 namespace nimbus::test {
 namespace {
 
-void expect_vec(const Vec3f &actual, const Vec3f &expected, float tolerance = 1e-5f) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
-
 std::string mesh_object(const std::string &file, const std::string &extra = "") {
   return "materials: { white: { type: diffuse } }\nobjects:\n  - { shape: mesh, material: white, file: " +
          file + extra + " }\n";

@@ -16,6 +16,13 @@ namespace nimbus::test {
 
 inline const std::string kFixtures = std::string(NIMBUS_SOURCE_DIR) + "/tests/scene/fixtures";
 
+// Vectors and colours (Rgb is a Vec3f) compared component by component.
+inline void expect_vec(const Vec3f &actual, const Vec3f &expected, float tolerance = 1e-5f) {
+  EXPECT_NEAR(actual.x, expected.x, tolerance);
+  EXPECT_NEAR(actual.y, expected.y, tolerance);
+  EXPECT_NEAR(actual.z, expected.z, tolerance);
+}
+
 // Parses inline YAML that must be valid; fails the test with the parser's message otherwise.
 inline SceneDesc parse_ok(const std::string &yaml) {
   Expected<SceneDesc> scene = parse_scene_string(yaml, "test.yaml");

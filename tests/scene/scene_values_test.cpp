@@ -7,12 +7,6 @@
 namespace nimbus::test {
 namespace {
 
-void expect_vec(const Vec3f &actual, const Vec3f &expected, float tolerance = 1e-5f) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
-
 TEST(SceneValues, EmptySceneUsesDefaults) {
   for (const char *text : {"", "# only a comment\n", "render:\ncamera:\nmaterials:\nobjects:\nlights:\n"}) {
     const SceneDesc scene = parse_ok(text);

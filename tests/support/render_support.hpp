@@ -95,6 +95,15 @@ inline double rel_mse(const std::vector<float> &test, const std::vector<float> &
   return n ? sum / double(n) : 0;
 }
 
+// Mean of the beauty layer over image pixels [x0, x1) x [y0, y1) (row 0 at the top).
+inline Rgb region_mean(const ImageLayers &img, int x0, int x1, int y0, int y1) {
+  const std::vector<float> &px = img.layers.at("beauty").data;
+  Rgb sum(0.0f);
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) sum += Rgb::load(&px[3 * (size_t(y) * img.width + size_t(x))]);
+  return sum / float((x1 - x0) * (y1 - y0));
+}
+
 inline Rgb mean_rgb(const std::vector<float> &img) {
   double s[3] = {0, 0, 0};
   for (size_t i = 0; i < img.size(); ++i) s[i % 3] += img[i];

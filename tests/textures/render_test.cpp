@@ -13,6 +13,7 @@
 namespace nimbus {
 namespace {
 
+using testing::region_mean;
 using testing::RenderRequest;
 using testing::SceneRenderer;
 using texture_test::ScratchDir;
@@ -29,15 +30,6 @@ std::string camera_and_quad(const std::string &material) {
          "], look_at: [0, 0, 0], up: [0, 1, 0], fov: 45 }\n" + "materials:\n  quad: " + material +
          "\n  black: { type: diffuse, albedo: 0 }\n" +
          "objects:\n  - { shape: rectangle, size: [2, 2], material: quad }\n";
-}
-
-// Mean of the beauty layer over image pixels [x0, x1) x [y0, y1) (row 0 at the top).
-Rgb region_mean(const ImageLayers &img, int x0, int x1, int y0, int y1) {
-  const std::vector<float> &px = img.layers.at("beauty").data;
-  Rgb sum(0.0f);
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x) sum += Rgb::load(&px[3 * (size_t(y) * img.width + size_t(x))]);
-  return sum / float((x1 - x0) * (y1 - y0));
 }
 
 constexpr uint8_t kA[3] = {188, 188, 188};
