@@ -1,0 +1,139 @@
+#!/usr/bin/python3
+"""nimbus.pt against Embree's own tutorial path tracer, side by side on Embree's Cornell box.
+
+    bench/embree_pathtracer_ab.py [--nimbus build/bin/nimbus] [--runs 5] [--size 512 512]
+        [--threads 2] [--frames 10] [--max-depth 8] [--ecs /usr/share/doc/embree3/models/cornell_box.ecs]
+
+Needs Debian's embree-tools (`apt-get install embree-tools`: /usr/bin/pathtracer and the model).
+
+The scene Nimbus renders is written from the .ecs file the tutorial reads: the same OBJ (with its .mtl
+materials), the same point light, camera position, target, up vector and field of view (Embree's is
+vertical, Nimbus's horizontal: converted for the aspect ratio), and the same maximum path length
+(Embree's --max-path-length counts closest-hit rays, as Nimbus's max_depth counts segments). Each run
+renders the tutorial (`--benchmark 2 FRAMES`: two frames of warm-up, then FRAMES timed), then
+`nimbus.pt` for FRAMES iterations, then `nimbus.caustics` with caustics off, alternating, so that the
+machine's drift falls on all of them alike. Figures:
+
+  samples/s  pixels x frames (or iterations) per second of rendering; Embree: its average frame rate
+             times the pixel count (one sample per pixel per frame); Nimbus: the render loop's seconds
+             (nimbus:seconds, no scene build and no file output);
+  rays/s     Embree: its MRAYPS figure (closest-hit and shadow rays); Nimbus: nimbus:rays (the same
+             two kinds) over the same seconds.
+
+Per run the ratio Nimbus / Embree of both figures; printed: every run, then the medians. Not part of CI.
+"""
+import argparse
+import math
+import os
+import re
+import shlex
+import statistics
+import subprocess
+import sys
+import tempfile
+
+from nimbus_tools import exr_metadata
+
+
+def parse_ecs(path):
+    """The tutorial's command-line options in an .ecs file, as a dict of option -> list of words."""
+    words = shlex.split(open(path).read())
+    opts, key = {}, None
+    for w in words:
+        if w.startswith("-") and not re.match(r"^-?[0-9.]+$", w):
+            key = w.lstrip("-")
+            opts.setdefault(key, [])
+        elif key is not None:
+            opts[key].append(w)
+    return opts
+
+
+def nimbus_scene(ecs, size, max_depth):
+    """The YAML scene matching the .ecs file."""
+    o = parse_ecs(ecs)
+    obj = os.path.join(os.path.dirname(os.path.abspath(ecs)), o["i"][0])
+    vp, vi, vu = o["vp"][:3], o["vi"][:3], o["vu"][:3]
+    vfov = float(o["fov"][0])
+    w, h = size
+    hfov = math.degrees(2 * math.atan(math.tan(math.radians(vfov) / 2) * w / h))
+    light = o["pointlight"]
+    lines = [
+        "# Written by bench/embree_pathtracer_ab.py from " + ecs,
+        "render: { resolution: [%d, %d], max_depth: %d, integrator: pt, seed: 1 }" % (w, h, max_depth),
+        "camera: { position: [%s], look_at: [%s], up: [%s], fov: %.6g }" % (
+            ", ".join(vp), ", ".join(vi), ", ".join(vu), hfov),
+        "objects:",
+        "  - { shape: mesh, file: %s }" % obj,
+        "lights:",
+        "  - { type: point, position: [%s], intensity: [%s] }" % (", ".join(light[:3]), ", ".join(light[3:6])),
+    ]
+    return "\n".join(lines) + "\n"
+
+
+def embree_run(pathtracer, ecs, size, threads, frames, max_depth):
+    """(samples/s, rays/s) of one tutorial benchmark run."""
+    cmd = [pathtracer, "-c", ecs, "--size", str(size[0]), str(size[1]), "--benchmark", "2", str(frames),
+           "--threads", str(threads), "--max-path-length", str(max_depth)]
+    out = subprocess.run(cmd, capture_output=True, text=True, check=True, cwd=os.path.dirname(ecs)).stdout
+    fps = float(re.search(r"BENCHMARK_RENDER_AVG\s+([0-9.eE+-]+)", out).group(1))
+    mrays = float(re.search(r"BENCHMARK_RENDER_MRAYPS_AVG\s+([0-9.eE+-]+)", out).group(1))
+    return fps * size[0] * size[1], mrays * 1e6
+
+
+def nimbus_run(nimbus, scene, size, threads, frames, out, extra):
+    """(samples/s, rays/s) of one Nimbus render of `frames` iterations."""
+    cmd = [nimbus, "render", scene, "-o", out, "--iterations", str(frames), "--threads", str(threads), "-q"]
+    subprocess.run(cmd + extra, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    meta = exr_metadata(out)
+    seconds = float(meta["nimbus:seconds"])
+    return size[0] * size[1] * frames / seconds, float(meta["nimbus:rays"]) / seconds
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--nimbus", default="build/bin/nimbus")
+    ap.add_argument("--pathtracer", default="/usr/bin/pathtracer")
+    ap.add_argument("--ecs", default="/usr/share/doc/embree3/models/cornell_box.ecs")
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--size", type=int, nargs=2, default=[512, 512])
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--frames", type=int, default=10)
+    ap.add_argument("--max-depth", type=int, default=8)
+    a = ap.parse_args()
+    for tool in (a.pathtracer, a.ecs):
+        if not os.path.exists(tool):
+            sys.exit("%s is missing: apt-get install embree-tools" % tool)
+
+    tmp = tempfile.mkdtemp(prefix="nimbus_embree_ab_")
+    scene = os.path.join(tmp, "embree_cornell_box.yaml")
+    with open(scene, "w") as f:
+        f.write(nimbus_scene(a.ecs, a.size, a.max_depth))
+    out = os.path.join(tmp, "out.exr")
+    sides = [("nimbus.pt", []), ("nimbus.caustics, caustics off", ["--integrator", "caustics", "--caustics", "off"])]
+    rows = {name: [] for name, _ in sides}
+    embree = []
+    print("scene: %s (from %s), %dx%d, %d threads, max path length %d, %d frames per run" % (
+        scene, a.ecs, a.size[0], a.size[1], a.threads, a.max_depth, a.frames))
+    for run in range(a.runs):
+        e = embree_run(a.pathtracer, a.ecs, a.size, a.threads, a.frames, a.max_depth)
+        embree.append(e)
+        line = "run %d  embree %.3f M samples/s %.2f M rays/s" % (run + 1, e[0] / 1e6, e[1] / 1e6)
+        for name, extra in sides:
+            n = nimbus_run(a.nimbus, scene, a.size, a.threads, a.frames, out, extra)
+            rows[name].append((n[0], n[1], n[0] / e[0], n[1] / e[1]))
+            line += " | %s %.3f M samples/s %.2f M rays/s (%.2fx, %.2fx)" % (
+                name, n[0] / 1e6, n[1] / 1e6, n[0] / e[0], n[1] / e[1])
+        print(line, flush=True)
+
+    med = statistics.median
+    print("\nmedians of %d runs" % a.runs)
+    print("%-32s %14s %12s %16s %14s" % ("", "M samples/s", "M rays/s", "samples ratio", "rays ratio"))
+    print("%-32s %14.3f %12.2f %16s %14s" % (
+        "embree tutorial pathtracer", med(e[0] for e in embree) / 1e6, med(e[1] for e in embree) / 1e6, "", ""))
+    for name, r in rows.items():
+        print("%-32s %14.3f %12.2f %15.2fx %13.2fx" % (
+            name, med(x[0] for x in r) / 1e6, med(x[1] for x in r) / 1e6, med(x[2] for x in r), med(x[3] for x in r)))
+
+
+if __name__ == "__main__":
+    main()
