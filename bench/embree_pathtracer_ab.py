@@ -20,7 +20,13 @@ machine's drift falls on all of them alike. Figures:
   rays/s     Embree: its MRAYPS figure (closest-hit and shadow rays); Nimbus: nimbus:rays (the same
              two kinds) over the same seconds.
 
-Per run the ratio Nimbus / Embree of both figures; printed: every run, then the medians. Not part of CI.
+Per run the ratio Nimbus / Embree of both figures; printed: every run, then the medians.
+
+Then the time to first pixel of each --first-pixel scene (default: scenes/default.yaml and the pool):
+`nimbus render SCENE --iterations 1`, RUNS times, medians of the EXR's nimbus:load_seconds (reading the
+scene and loading plugins), setup_seconds (world and plugins), first_iteration_seconds and
+time_to_first_pixel, and of the whole command's wall time (which adds process start-up and writing the
+image). Not part of CI.
 """
 import argparse
 import math
@@ -31,6 +37,7 @@ import statistics
 import subprocess
 import sys
 import tempfile
+import time
 
 from nimbus_tools import exr_metadata
 
@@ -89,6 +96,17 @@ def nimbus_run(nimbus, scene, size, threads, frames, out, extra):
     return size[0] * size[1] * frames / seconds, float(meta["nimbus:rays"]) / seconds
 
 
+def first_pixel(nimbus, scene, threads, out):
+    """(load, setup, first iteration, time to first pixel, wall) seconds of one 1-iteration render."""
+    cmd = [nimbus, "render", scene, "-o", out, "--iterations", "1", "--threads", str(threads), "-q"]
+    start = time.monotonic()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    wall = time.monotonic() - start
+    m = exr_metadata(out)
+    keys = ("load_seconds", "setup_seconds", "first_iteration_seconds", "time_to_first_pixel")
+    return tuple(float(m["nimbus:" + k]) for k in keys) + (wall,)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--nimbus", default="build/bin/nimbus")
@@ -99,6 +117,8 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--frames", type=int, default=10)
     ap.add_argument("--max-depth", type=int, default=8)
+    ap.add_argument("--first-pixel", nargs="*", default=["scenes/default.yaml", "scenes/caustics/pool.yaml"],
+                    help="scenes whose time to first pixel is measured")
     a = ap.parse_args()
     for tool in (a.pathtracer, a.ecs):
         if not os.path.exists(tool):
@@ -133,6 +153,14 @@ def main():
     for name, r in rows.items():
         print("%-32s %14.3f %12.2f %15.2fx %13.2fx" % (
             name, med(x[0] for x in r) / 1e6, med(x[1] for x in r) / 1e6, med(x[2] for x in r), med(x[3] for x in r)))
+
+    if a.first_pixel:
+        print("\ntime to first pixel, seconds (medians of %d renders of 1 iteration, %d threads)" % (a.runs, a.threads))
+        print("%-32s %8s %8s %16s %14s %10s" % ("scene", "load", "setup", "first iteration", "first pixel",
+                                                 "command"))
+    for scene in a.first_pixel:
+        runs = [first_pixel(a.nimbus, scene, a.threads, out) for _ in range(a.runs)]
+        print("%-32s %8.3f %8.3f %16.3f %14.3f %10.3f" % ((scene,) + tuple(med(r[k] for r in runs) for k in range(5))))
 
 
 if __name__ == "__main__":
