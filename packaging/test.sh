@@ -4,7 +4,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash packaging/build.sh "$@"
 build_dir=${NIMBUS_BUILD_DIR:-build}
-# NIMBUS_CTEST_EXCLUDE_LABEL: a regular expression of ctest labels to leave out (CI's sanitizer pass,
-# .ci/run).
+# NIMBUS_CTEST_EXCLUDE_LABEL and NIMBUS_CTEST_EXCLUDE: regular expressions of ctest labels and of test
+# names to leave out (CI's sanitizer pass, .ci/run).
 ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" --timeout 900 \
-  ${NIMBUS_CTEST_EXCLUDE_LABEL:+-LE "$NIMBUS_CTEST_EXCLUDE_LABEL"}
+  ${NIMBUS_CTEST_EXCLUDE_LABEL:+-LE "$NIMBUS_CTEST_EXCLUDE_LABEL"} ${NIMBUS_CTEST_EXCLUDE:+-E "$NIMBUS_CTEST_EXCLUDE"}
