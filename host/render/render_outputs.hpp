@@ -37,8 +37,9 @@ struct RenderFacts {
   std::optional<double> estimated_relmse;  // with an error target
   std::optional<uint64_t> resumed_from;    // when resuming
   std::map<std::string, double> stats;     // what plugins reported
-  // Time to first pixel of this session: reading the scene and loading plugins, building the world and
-  // binding and preparing the plugins, then the first iteration (unset when no iteration finished).
+  // Time to first pixel of this render (a resumed one counts from its own start): reading the scene and
+  // loading plugins, building the world and preparing the plugins, then the first iteration it rendered
+  // (unset when it finished none).
   double load_seconds = 0, setup_seconds = 0;
   std::optional<double> first_iteration_seconds;
 };
