@@ -59,7 +59,7 @@ inline Vec2f emission_sample(uint64_t p, uint64_t n, float xi, float j0, float j
   const float cell = 1.0f / float(uint32_t(1) << order);
   constexpr float kBelowOne = 0x1.fffffep-1f;
   // float(x) + j < 2^16 keeps the sum exact to 8 bits of j; min keeps a rounded-up 1 out.
-  return Vec2f(std::min((float(x) + j0) * cell, kBelowOne), std::min((float(y) + j1) * cell, kBelowOne));
+  return Vec2f{std::min((float(x) + j0) * cell, kBelowOne), std::min((float(y) + j1) * cell, kBelowOne)};
 }
 
 }  // namespace nimbus::caustics

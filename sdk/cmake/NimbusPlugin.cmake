@@ -17,9 +17,14 @@ function(nimbus_add_plugin target)
     VISIBILITY_INLINES_HIDDEN ON)
   target_link_options(${target} PRIVATE
     "LINKER:--version-script=${_NIMBUS_PLUGIN_MAP}" "LINKER:--no-undefined")
-  # Sanitizer runtimes are provided by the host executable; allow their symbols to stay undefined.
+  # Sanitizer runtimes are provided by the host executable; allow their symbols to stay undefined. GCC
+  # links its runtime library into the module as well; Clang never does (its runtime is static in the
+  # executable), so there the module's own references to it stay undefined too (-z undefs).
   if(NIMBUS_SANITIZE OR NIMBUS_TSAN)
     target_link_options(${target} PRIVATE "LINKER:--allow-shlib-undefined")
+    if(CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+      target_link_options(${target} PRIVATE "LINKER:-z,undefs")
+    endif()
   endif()
   if(ARG_OUTPUT_DIRECTORY)
     set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY ${ARG_OUTPUT_DIRECTORY})
