@@ -17,7 +17,7 @@ int32_t is_active(const nimbus_host_t *host, nimbus_element_t el) {
 
 // Odd iterations' beauty also feeds the error estimate's half film (only with --target-error).
 Film *half_film(const RunState &run, nimbus_element_t el) {
-  return el == NIMBUS_ELEMENT_BEAUTY && run.error_estimate && ErrorEstimate::is_odd(run.iteration)
+  return el == NIMBUS_ELEMENT_BEAUTY && run.error_estimate && ErrorEstimate::is_odd(run.task_iteration)
              ? &run.error_estimate->half()
              : nullptr;
 }

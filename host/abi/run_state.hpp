@@ -35,8 +35,11 @@ struct RunState {
   Film film;
   // Only with a target error: odd-iteration beauty, for the reference-free error estimate.
   std::unique_ptr<ErrorEstimate> error_estimate;
-  uint64_t iteration = 0;  // the iteration being rendered (1-based), set before its tiles start
-  uint64_t seed = 1;       // of the random streams the rng service derives
+  // The iteration being rendered, set before its tiles start: its frame-wide number (what plugins see), and
+  // its number within this render, which counts 1, 2, ... also in a task of a shared frame
+  // (RenderJob::split).
+  uint64_t iteration = 0, task_iteration = 0;
+  uint64_t seed = 1;  // of the random streams the rng service derives
   // Film element of each LightMix group (empty when LightMix was not requested).
   std::vector<int32_t> lightmix_elements;
 

@@ -16,6 +16,7 @@ int render_command(const std::vector<std::string> &args);
 int plugins_command(const std::vector<std::string> &args);
 int lightmix_command(const std::vector<std::string> &args);
 int compare_command(const std::vector<std::string> &args);
+int merge_command(const std::vector<std::string> &args);
 
 // Absolute path of the running executable (for plugin and data discovery).
 std::string executable_path();

@@ -18,6 +18,7 @@ constexpr const char *kUsage =
     "  plugins             list the plugins found, with their status\n"
     "  lightmix IN.exr     relight a LightMix render: --set GROUP=SCALE[,R,G,B] ... -o OUT.exr\n"
     "  compare TEST REF    error metrics (RMSE, relMSE, MAPE) of an EXR against a reference\n"
+    "  merge PART.exr...   join the parts of a frame rendered with --task K --tasks N: -o OUT.exr\n"
     "\n"
     "  nimbus --version    print the version\n"
     "  nimbus <command> --help   help on a command\n";
@@ -46,6 +47,7 @@ int main(int argc, char **argv) {
   if (cmd == "plugins") return plugins_command(args);
   if (cmd == "lightmix") return lightmix_command(args);
   if (cmd == "compare") return compare_command(args);
+  if (cmd == "merge") return merge_command(args);
   std::fprintf(stderr, "nimbus: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
   return kExitUsage;
 }

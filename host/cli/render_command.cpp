@@ -22,6 +22,7 @@
 #include "abi/host_services.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress_display.hpp"
+#include "core/install_layout.hpp"
 #include "loader/plugin_registry.hpp"
 #include "render/render_session.hpp"
 #include "scene/pixel_filter_type.hpp"
@@ -33,7 +34,8 @@ namespace {
 constexpr const char *kHelp =
     "usage: nimbus render SCENE.yaml [options]\n"
     "\n"
-    "Renders SCENE progressively and writes a multi-layer EXR and a PNG preview beside it.\n"
+    "Renders SCENE progressively and writes a multi-layer EXR and a PNG preview beside it. SCENE may name\n"
+    "an installed scene (share/nimbus/scenes), e.g. default.yaml or caustics/pool.yaml.\n"
     "\n"
     "options:\n"
     "  -o, --output OUT.exr   output image (default: out/<scene name>.exr); the PNG gets the same stem\n"
@@ -59,6 +61,10 @@ constexpr const char *kHelp =
     "  --checkpoint PATH      checkpoint file (default: OUT.exr.ckpt)\n"
     "  --checkpoint-every S   seconds between checkpoints (default 300; 0: only when the render stops)\n"
     "  --resume               continue from the checkpoint; --iterations is then the total, old + new\n"
+    "  --task K --tasks N     render task K (0 to N-1) of N that share the frame: its iterations K+1,\n"
+    "                         K+1+N, ... of the frame's --iterations, as a partial EXR (default\n"
+    "                         out/<scene name>.part<K>of<N>.exr, no PNG) for `nimbus merge`; --time and\n"
+    "                         --target-error apply to each task on its own\n"
     "\n"
     "Ctrl-C (or SIGTERM) stops after the current iteration and writes the image so far (exit code 130;\n"
     "143 for SIGTERM); a second one stops at once.\n"
@@ -88,7 +94,10 @@ struct Args {
   std::vector<RenderDesc::OptionSetting> integrator_options;  // --NAME VALUE flags the CLI does not know
   std::optional<std::array<uint32_t, 4>> region;
   bool quiet = false;
+  std::optional<uint32_t> task, tasks;
 };
+
+constexpr uint32_t kMaxTasks = 100000;
 
 template <class T>
 bool parse_number(const std::string &s, T &out) {
@@ -187,6 +196,13 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
       a.options.checkpoint_interval_seconds = t;
     } else if (k == "--resume") {
       a.options.resume = true;
+    } else if (k == "--task" || k == "--tasks") {
+      uint32_t n = 0;
+      if (!value(v) || !parse_number(v, n) || (k == "--tasks" && (n == 0 || n > kMaxTasks)))
+        return k + ": expected " +
+               (k == "--task" ? "a task number from 0" : "a task count from 1 to 100000") + ", got '" + v +
+               "'";
+      (k == "--task" ? a.task : a.tasks) = n;
     } else if (is_option_flag(k)) {
       // Not a flag of the render command: an option of the integrator, checked once it is bound.
       const size_t eq = k.find('=');
@@ -214,6 +230,11 @@ std::string parse_args(const std::vector<std::string> &args, Args &a, bool &help
     }
   }
   if (a.scene.empty()) return "no scene given";
+  if (a.task.has_value() != a.tasks.has_value()) return "--task and --tasks go together";
+  if (a.tasks && *a.task >= *a.tasks)
+    return "--task " + std::to_string(*a.task) + " is not one of the tasks 0 to " +
+           std::to_string(*a.tasks - 1);
+  a.options.task = a.task.value_or(0), a.options.tasks = a.tasks.value_or(1);
   return "";
 }
 
@@ -231,6 +252,12 @@ int render_command(const std::vector<std::string> &argv) {
     return kExitOk;
   }
   const auto loading = std::chrono::steady_clock::now();  // the time to first pixel starts here
+  // A relative path that names no file may name an installed scene: `nimbus render default.yaml`.
+  if (std::error_code ec;
+      !std::filesystem::exists(a.scene, ec) && std::filesystem::path(a.scene).is_relative())
+    if (const auto installed = installed_data_dir() / "scenes" / a.scene;
+        std::filesystem::exists(installed, ec))
+      a.scene = installed.string();
   auto scene = parse_scene_file(a.scene);
   if (!scene) {
     std::fprintf(stderr, "%s\n", scene.error().message.c_str());
@@ -247,9 +274,13 @@ int render_command(const std::vector<std::string> &argv) {
     }
     std::copy(a.region->begin(), a.region->end(), desc.render.region);
   }
-  if (a.options.output_exr.empty())
+  if (a.options.output_exr.empty()) {
+    const std::string part = a.options.tasks > 1 ? ".part" + std::to_string(a.options.task) + "of" +
+                                                       std::to_string(a.options.tasks)
+                                                 : "";
     a.options.output_exr =
-        (std::filesystem::path("out") / std::filesystem::path(a.scene).stem()).string() + ".exr";
+        (std::filesystem::path("out") / std::filesystem::path(a.scene).stem()).string() + part + ".exr";
+  }
   {
     // Create the output directory so a render never fails at the very end for want of it.
     std::error_code ec;
@@ -299,7 +330,12 @@ int render_command(const std::vector<std::string> &argv) {
     return kExitFailure;
   }
   const RenderResult &r = result.value();
-  if (!a.quiet)
+  if (!a.quiet && r.png_path.empty())
+    std::fprintf(stderr,
+                 "nimbus: %llu iterations in %.2f s -> %s (task %u of %u; join with nimbus merge)%s\n",
+                 (unsigned long long)r.iterations, r.seconds, r.exr_path.c_str(), a.options.task,
+                 a.options.tasks, r.cancelled ? " (interrupted)" : "");
+  else if (!a.quiet)
     std::fprintf(stderr, "nimbus: %llu iterations in %.2f s -> %s, %s%s\n", (unsigned long long)r.iterations,
                  r.seconds, r.exr_path.c_str(), r.png_path.c_str(), r.cancelled ? " (interrupted)" : "");
   if (!a.quiet && r.resumed_from)

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/install_layout.hpp"
 #include "film/film.hpp"
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -50,15 +51,8 @@ std::string existing_or_empty(const std::filesystem::path &p) {
 std::string default_ocio_config_path() {
   // An explicit choice wins even when it names a missing file: the error then names what the user set.
   if (const char *env = std::getenv("NIMBUS_OCIO_CONFIG"); env && *env) return env;
-  // <prefix>/bin/nimbus finds <prefix>/share/nimbus/ocio; the build tree mirrors that layout
-  // (build/bin, build/tests -> build/share/nimbus/ocio), so an installed or relocated tree works.
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const std::filesystem::path data = NIMBUS_INSTALL_DATA_DIR;
-    const std::filesystem::path share = data.is_absolute() ? data : exe.parent_path() / ".." / data;
+  if (const std::filesystem::path share = installed_data_dir(); !share.empty())
     if (std::string found = existing_or_empty(share / "ocio" / "config.ocio"); !found.empty()) return found;
-  }
   return NIMBUS_OCIO_SOURCE_CONFIG;
 }
 

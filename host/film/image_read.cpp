@@ -78,9 +78,8 @@ void read_attribute(const OIIO::ParamValue &p, ImageLayers &out) {
   out.numbers[p.name().string()] = v;
 }
 
-}  // namespace
-
-Expected<ImageLayers> read_exr_layers(const std::string &path) {
+// The file opened at its first part, whose size has been checked.
+Expected<std::unique_ptr<OIIO::ImageInput>> open_exr(const std::string &path) {
   if (auto problem = image_header_problem(path)) return Error{"cannot read '" + path + "': " + *problem};
   auto in = OIIO::ImageInput::open(path);
   if (!in) return Error{"cannot read '" + path + "': " + one_line(OIIO::geterror())};
@@ -92,6 +91,26 @@ Expected<ImageLayers> read_exr_layers(const std::string &path) {
                  std::to_string(spec.height) + " pixels, more than Nimbus renders (" +
                  std::to_string(kMaxResolution) + " per side)"};
   }
+  return in;
+}
+
+}  // namespace
+
+Expected<ImageLayers> read_exr_header(const std::string &path) {
+  auto opened = open_exr(path);
+  if (!opened) return opened.error();
+  const OIIO::ImageSpec &spec = opened.value()->spec();
+  ImageLayers out;
+  out.width = uint32_t(spec.width), out.height = uint32_t(spec.height);
+  for (const OIIO::ParamValue &p : spec.extra_attribs) read_attribute(p, out);
+  return out;
+}
+
+Expected<ImageLayers> read_exr_layers(const std::string &path) {
+  auto opened = open_exr(path);
+  if (!opened) return opened.error();
+  std::unique_ptr<OIIO::ImageInput> &in = opened.value();
+  const OIIO::ImageSpec &spec = in->spec();
   const size_t width = static_cast<size_t>(spec.width), height = static_cast<size_t>(spec.height);
   const size_t n = static_cast<size_t>(spec.nchannels);
   // A band of rows at a time, so that memory follows the pixels the file really holds: its header alone

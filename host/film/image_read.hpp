@@ -29,5 +29,7 @@ struct ImageLayers {
 };
 
 Expected<ImageLayers> read_exr_layers(const std::string &path);
+// The size and header attributes alone (no channels), without reading pixels.
+Expected<ImageLayers> read_exr_header(const std::string &path);
 
 }  // namespace nimbus

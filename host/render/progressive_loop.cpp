@@ -85,8 +85,10 @@ LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &p, Ru
     }
     // Between iterations the sums are complete (splats merged): the only safe moment to save them.
     checkpoint.save_if_due(film, done, message);
-    const uint64_t i = done + 1;
-    run.iteration = i;
+    // The tasks of a shared frame take turns through its iterations (RenderJob::split); the film counts this
+    // render's own.
+    const uint64_t local = done + 1, i = job.split.frame_number(local);
+    run.iteration = i, run.task_iteration = local;
     const std::string &id = p.integrator.id();
     nimbus_status_t s = NIMBUS_OK;
     {
@@ -118,15 +120,15 @@ LoopOutcome run_progressive_loop(const RenderJob &job, const BoundPlugins &p, Ru
     }
     // The iteration's samples are all in: they count even when its end_iteration fails.
     film.end_iteration();
-    out.done = i;
-    if (i == out.resumed_from + 1) out.first_iteration_seconds = seconds_since(t0);
+    out.done = local;
+    if (local == out.resumed_from + 1) out.first_iteration_seconds = seconds_since(t0);
     if (s != NIMBUS_OK) {
       out.failure = s, out.failure_hook = "end_iteration";
       break;
     }
     if (run.error_estimate) {
-      run.error_estimate->end_iteration(i);
-      if (i % 2 == 0) {
+      run.error_estimate->end_iteration(local);
+      if (local % 2 == 0) {
         out.estimated_error = run.error_estimate->relmse(film);
         if (out.estimated_error < stop.target_error) out.reached_target = true;
       }

@@ -12,7 +12,8 @@ RenderCheckpoint::RenderCheckpoint(const RenderJob &job, const std::string &inte
     : path_(job.checkpoint_path), interval_(job.checkpoint_interval_seconds), resume_(job.resume) {
   info_.seed = job.seed;
   info_.integrator = integrator_id;
-  info_.fingerprint = job.fingerprint(integrator_id, sampler_id, integrator_options, guide_id);
+  info_.fingerprint =
+      job.fingerprint(integrator_id, sampler_id, integrator_options, guide_id) + job.task_line();
 }
 
 Status RenderCheckpoint::restore_or_warn(Film &film, const MessageFn &warn) {

@@ -71,6 +71,11 @@ std::string RenderJob::fingerprint(const std::string &integrator_id, const std::
   return lines;
 }
 
+std::string RenderJob::task_line() const {
+  if (split.whole()) return {};
+  return "task=" + std::to_string(split.index) + "/" + std::to_string(split.count) + "\n";
+}
+
 Expected<RenderJob> resolve_job(const SceneDesc &scene, const RenderOptions &options) {
   const RenderDesc &r = scene.render;
   RenderJob job;
@@ -105,6 +110,19 @@ Expected<RenderJob> resolve_job(const SceneDesc &scene, const RenderOptions &opt
   job.checkpoint_interval_seconds = options.checkpoint_interval_seconds;
   job.resume = options.resume;
 
+  if (options.tasks == 0 || options.task >= options.tasks)
+    return Error{"--task " + std::to_string(options.task) + " --tasks " + std::to_string(options.tasks) +
+                 ": the task must be in [0, tasks)"};
+  job.split = {options.task, options.tasks};
+  job.frame_iterations = job.stop.iterations;
+  if (job.stop.iterations) {
+    job.stop.iterations = job.split.share_of(job.frame_iterations);
+    if (job.stop.iterations == 0)
+      return Error{"--task " + std::to_string(options.task) + " --tasks " + std::to_string(options.tasks) +
+                   ": the frame's " + std::to_string(job.frame_iterations) +
+                   " iterations leave this task none (use at most " + std::to_string(job.frame_iterations) +
+                   " tasks)"};
+  }
   if (job.resume && job.stop.target_error > 0)
     return Error{
         "an error target (--target-error or render.target_error) cannot resume a checkpoint "

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nimbus/cpp/task_split.hpp>
+
 #include "core/expected.hpp"
 #include "scene/scene_desc.hpp"
 
@@ -43,6 +45,9 @@ struct RenderOptions {
   bool resume = false;
   double load_seconds =
       0;  // what reading the scene and loading plugins took the caller (time to first pixel)
+  // This render's share of the frame (--task K --tasks N): the frame-wide iterations K + 1 + k N, written
+  // as a partial EXR for `nimbus merge`. `iterations` stays the frame's total.
+  uint32_t task = 0, tasks = 1;
 };
 
 // Scenes with more lights than this get the many-light tree by default.
@@ -65,7 +70,9 @@ struct RenderJob {
   uint32_t threads = 0;  // 0 = all cores
   uint32_t max_depth = 0;
   FilterType filter = FilterType::Box;
-  StopRules stop;
+  StopRules stop;        // stop.iterations counts this task's iterations (the frame's for a whole render)
+  sdk::TaskSplit split;  // which of the frame's iterations this render has (task_split.hpp)
+  uint64_t frame_iterations = 0;  // the frame's total when stopping by iterations, else 0
 
   std::string integrator;  // a plugin id or short name ("pt")
   // The integrator's options as the scene and command line set them (checked once it is bound).
@@ -99,9 +106,13 @@ struct RenderJob {
   // what the command line can change without editing a file. The ids are those of the bound plugins.
   // `options`: the integrator's options as resolved against its declarations. `guide_id`: the bound
   // guide's, empty without one (then the fingerprint has no guide line).
+  // The lines are those of the frame: every task of one frame has the same (`nimbus merge` compares them).
   std::string fingerprint(const std::string &integrator_id, const std::string &light_sampler_id,
                           const std::vector<std::pair<std::string, std::string>> &options,
                           const std::string &guide_id = {}) const;
+  // A task's checkpoint resumes only the same task: its fingerprint has this line besides (empty for a
+  // whole render, whose checkpoints predate tasks).
+  std::string task_line() const;
 };
 
 // Resolves and checks the job; `scene` must outlive it. Errors name what is inconsistent.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "film/partial_exr.hpp"
 #include "scene/pixel_filter_type.hpp"
 
 namespace nimbus {
@@ -74,6 +75,14 @@ Status write_outputs(const RenderJob &job, const Film &film, const RenderFacts &
         {"time_to_first_pixel", facts.load_seconds + facts.setup_seconds + *facts.first_iteration_seconds});
   }
   for (const auto &[k, v] : facts.stats) nmeta.push_back({"stat:" + k, v});
+  if (!job.split.whole()) {
+    smeta.push_back({"fingerprint", facts.fingerprint});
+    smeta.push_back({"plugins", facts.plugin_versions});
+    nmeta.push_back({"task", double(job.split.index)});
+    nmeta.push_back({"tasks", double(job.split.count)});
+    nmeta.push_back({"frame_iterations", double(job.frame_iterations)});
+    return write_partial_exr(film, job.exr_path, smeta, nmeta);
+  }
   if (Status s = film.write_exr(job.exr_path, smeta, nmeta); !s) return s.error();
   return film.write_png(job.png_path, job.ocio_config);
 }

@@ -42,9 +42,14 @@ struct RenderFacts {
   // (unset when it finished none).
   double load_seconds = 0, setup_seconds = 0;
   std::optional<double> first_iteration_seconds;
+  // What `nimbus merge` compares between the tasks of a frame: RenderJob::fingerprint of the bound plugins,
+  // and "id@version" of each (the host's version is the EXR's nimbus:version).
+  std::string fingerprint, plugin_versions;
 };
 
-// job.exr_path with "nimbus:*" metadata, then job.png_path through job.ocio_config.
+// job.exr_path with "nimbus:*" metadata, then job.png_path through job.ocio_config. A task of a shared
+// frame (job.split) writes a partial EXR instead (film/partial_exr.hpp: the exact sums, nimbus:task,
+// nimbus:tasks, nimbus:frame_iterations, nimbus:fingerprint, nimbus:plugins) and no PNG.
 Status write_outputs(const RenderJob &job, const Film &film, const RenderFacts &facts);
 
 }  // namespace nimbus

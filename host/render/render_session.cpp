@@ -40,6 +40,13 @@ RenderFacts facts_of(const RenderJob &job, const BoundPlugins &plugins, RunState
   f.rays = run.rays_traced();
   if (run.error_estimate) f.estimated_relmse = loop.estimated_error;
   if (job.resume) f.resumed_from = loop.resumed_from;
+  f.fingerprint = job.fingerprint(f.integrator, f.light_sampler, plugins.options, f.guide);
+  for (const PluginHandle *p : {&plugins.integrator, &plugins.sampler, &plugins.guide}) {
+    if (p->id().empty()) continue;
+    const nimbus_version_t &v = p->record().version;
+    f.plugin_versions += (f.plugin_versions.empty() ? "" : ",") + p->id() + "@" + std::to_string(v.major) +
+                         "." + std::to_string(v.minor) + "." + std::to_string(v.patch);
+  }
   std::lock_guard lock(run.stats_mutex);
   f.stats = run.stats;
   return f;
@@ -166,8 +173,10 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   nimbus_render_info_t info{};
   info.header = {sizeof(info), NIMBUS_S_TYPE_RENDER_INFO, nullptr};
   info.worker_count = run.worker_count;
-  info.first_iteration = film.iterations() + 1;
+  info.first_iteration = job.split.frame_number(film.iterations() + 1);
   info.planned_iterations = job.stop.iterations;
+  info.task_index = job.split.index;
+  info.task_count = job.split.count;
   nimbus_status_t begun = NIMBUS_OK;
   {
     HookScope hook(run.hooks, plugins.integrator.id(), "begin_render");
@@ -197,7 +206,7 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   result.resumed_from = job.resume ? loop.resumed_from : 0;
   result.checkpoint_path = checkpoint.saved_path();
   result.exr_path = job.exr_path;
-  result.png_path = job.png_path;
+  result.png_path = job.split.whole() ? job.png_path : std::string();
   const RenderFacts facts = facts_of(job, plugins, run, loop, checkpoint.previous_seconds(), setup_seconds);
   if (Status s = write_outputs(job, film, facts); !s) return write_elsewhere(job, film, facts, s.error());
   if (!checkpointed)

@@ -13,6 +13,7 @@
 
 #include <nimbus/cpp/camera_path.hpp>
 #include <nimbus/cpp/render_state.hpp>
+#include <nimbus/cpp/task_split.hpp>
 
 #include "caustics_record.hpp"
 #include "emission_selection.hpp"
@@ -79,6 +80,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   nimbus_status_t begin_render(const nimbus_render_info_t &info) override {
     const nimbus_host_t *h = host().get();
     if (nimbus_status_t s = Base::begin_render(info); s != NIMBUS_OK) return s;
+    split_ = sdk::TaskSplit::of(info);
     merge_id_ = services().film->is_active(h, merge_element_) ? merge_element_ : NIMBUS_ELEMENT_INVALID;
     region_pixels_.resize(info.worker_count);
     lookup_radii_.resize(info.worker_count);
@@ -117,8 +119,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     return NIMBUS_OK;
   }
 
-  nimbus_status_t begin_iteration(uint64_t iteration) override {
+  nimbus_status_t begin_iteration(uint64_t frame_iteration) override {
     if (!armed_) return NIMBUS_OK;
+    const uint64_t iteration = split_.task_number(frame_iteration);
     const uint64_t paths = within_memory_budget(schedule_.plan(iteration));
     if (rebuild_map_) {
       // A resumed render: the map of the last pass, from the same arguments (photon_pass is deterministic)
@@ -154,9 +157,10 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       schedule_.pass_done(iteration, result.traced, pass_.map().size());
     }
     map_active_ = schedule_.map_active();
-    merge_.radius_per_length = radius_per_length(theta_pix_, schedule_.passes());
-    merge_.time_half_width = PhotonClock::half_width(schedule_.passes());
-    merge_.lambda_half_width = PhotonClock::lambda_half_width(schedule_.passes());
+    const uint32_t pass = uint32_t(split_.frame_number(schedule_.passes()));
+    merge_.radius_per_length = radius_per_length(theta_pix_, pass);
+    merge_.time_half_width = PhotonClock::half_width(pass);
+    merge_.lambda_half_width = PhotonClock::lambda_half_width(pass);
     merge_.lookup_probability = roulette_.probabilities();
     return NIMBUS_OK;
   }
@@ -188,8 +192,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     if (armed_) useful_.add(size_t(y) * width_ + x, rec.beauty, rec.merge, rec.lookup_moment);
   }
 
-  nimbus_status_t end_iteration(uint64_t iteration) override {
+  nimbus_status_t end_iteration(uint64_t frame_iteration) override {
     if (!armed_) return NIMBUS_OK;
+    const uint64_t iteration = split_.task_number(frame_iteration);
     for (ImportanceMarks &m : marks_) importance_.merge(m);
     // Camera paths of this iteration: the render region's pixels (tiles cover only the region).
     uint64_t pixels = 0;
@@ -318,8 +323,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     return fit;
   }
 
-  nimbus_status_t photon_pass(uint32_t pass, uint64_t paths, float filter_reach, PhotonPass::Result &result) {
+  nimbus_status_t photon_pass(uint32_t j, uint64_t paths, float filter_reach, PhotonPass::Result &result) {
     const nimbus_host_t *h = host().get();
+    const uint32_t pass = uint32_t(split_.frame_number(j));  // keys its random numbers, as the radius
     if (progress_) progress_->report(h, 0, paths, "photons");
     sdk::TimedScene scene = timed_scene();
     scene.timed = merge_.clock.timed();  // a moving camera alone leaves photons untimed
@@ -367,6 +373,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   Vec3f scene_center_;
   uint32_t width_ = 0, height_ = 0;
   PhotonSchedule schedule_;
+  sdk::TaskSplit split_;    // pass j is the frame's pass frame_number(j): docs/farm-rendering.md
   double photon_work_ = 0;  // work units per photon path of the last pass
   PhotonPass pass_;
   uint64_t map_request_ = 0;  // photon paths asked of the current map's pass

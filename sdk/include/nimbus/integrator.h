@@ -49,6 +49,15 @@ typedef struct nimbus_render_info {
   uint32_t reserved;
   uint64_t first_iteration;    /* 1, or later when resuming */
   uint64_t planned_iterations; /* 0 when the render stops by time or error instead */
+  /* Since 1.8 (check header.struct_size). This render is task `task_index` of `task_count` processes that
+   * share one frame's iterations (nimbus render --task K --tasks N, joined by nimbus merge): it renders the
+   * iterations task_index + 1 + k * task_count, k = 0, 1, ... Iteration numbers everywhere (first_iteration,
+   * begin_iteration, tile.iteration) are these frame-wide indices; planned_iterations counts this task's
+   * own. A whole render is task 0 of 1. A plugin that numbers something of its own per render (photon
+   * passes j = 1, 2, ...) and keys random numbers or schedules by it uses the frame-wide number
+   * task_index + 1 + (j - 1) * task_count, so tasks never share random numbers and follow one schedule. */
+  uint32_t task_index;
+  uint32_t task_count;
 } nimbus_render_info_t;
 
 /* Pixels [x0, x1) × [y0, y1) of iteration `iteration` (1-based). */
