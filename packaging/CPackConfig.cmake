@@ -1,6 +1,7 @@
 # Packages: a Debian package and a tarball (cpack --config build/CPackConfig.cmake, or
 # `cmake --build build --target package`). Both install the CLI, the first-party plugins, the SDK
-# (headers + CMake package for find_package(Nimbus)), the OCIO config and the scenes: one package holding
+# (headers + CMake package for find_package(Nimbus)), the OCIO config, the scenes and what
+# packaging/install.cmake adds (Slurm scripts, man pages, bash completion, copyright): one package holding
 # both install components (`runtime`, `sdk`; see the top-level CMakeLists.txt). Per-component packages
 # are one switch away (CPACK_ARCHIVE_COMPONENT_INSTALL / CPACK_DEB_COMPONENT_INSTALL ON).
 set(CPACK_PACKAGE_NAME nimbus)
@@ -13,7 +14,11 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
+# Stripped binaries in nimbus_<version>_<arch>.deb and their debug information in a separate
+# nimbus-dbgsym_<version>_<arch>.ddeb (install it with dpkg -i for backtraces with file and line): the DEB
+# generator splits it off itself, so CPack must not strip first. The tarball keeps it in the binaries.
 set(CPACK_STRIP_FILES OFF)
+set(CPACK_DEBIAN_DEBUGINFO_PACKAGE ON)
 # Only the two components: anything installed without one would be a packaging mistake, not a third one.
 set(CPACK_COMPONENTS_ALL runtime sdk)
 include(CPack)

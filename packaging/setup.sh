@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages Nimbus needs to build, test and package. Idempotent: installs only what
+# Installs the Debian 12 packages Nimbus needs to build, test and package (help2man writes the man pages;
+# Slurm and MUNGE run the farm test, tests/slurm, on localhost). Idempotent: installs only what
 # is missing and prints nothing when everything is already there. Needs root (or sudo) and apt-get.
 set -euo pipefail
 
@@ -9,6 +10,9 @@ packages=(
   libyaml-cpp-dev libosd-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
   libtinyobjloader-dev libtinygltf-dev
   python3 python3-numpy python3-matplotlib clang-format
+  clang  # the sanitizer build (CI's second pass) and the fuzz targets
+  help2man
+  slurm-wlm munge
 )
 
 missing=()
