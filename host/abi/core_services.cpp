@@ -1,6 +1,8 @@
 // nimbus.host.rng@1, progress@1, tasks@1, memory@1 and thread-check@1: the small services.
 #include <tbb/parallel_for.h>
 
+#include "core/denormals.hpp"
+
 #include <cstdlib>
 
 #include "abi/host_services.hpp"
@@ -49,6 +51,7 @@ nimbus_status_t parallel_for(const nimbus_host_t *host, uint64_t count, uint64_t
   // Fixed chunks (not TBB's adaptive ranges) so boundaries never depend on the thread count.
   run.arena->execute([&] {
     tbb::parallel_for(uint64_t(0), chunks, [&](uint64_t c) {
+      const FlushDenormals float_mode;
       nimbus_thread_ctx_t tc{sizeof(nimbus_thread_ctx_t), worker_index(), run.worker_count, 0, nullptr, 0};
       const uint64_t begin = c * grain, end = std::min(count, begin + grain);
       fn(&tc, begin, end, user);

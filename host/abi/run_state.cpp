@@ -6,10 +6,6 @@ RunState::RunState(uint32_t width, uint32_t height, uint32_t threads, uint64_t s
     : film(width, height), seed(seed_) {
   const int n = threads > 0 ? int(threads) : tbb::this_task_arena::max_concurrency();
   arena = std::make_unique<tbb::task_arena>(n);
-  // Initialised before it is observed: TBB frees the observer of an arena that never ran a task only if
-  // the arena existed when observation began.
-  arena->initialize();
-  arena_float_mode = std::make_unique<ArenaFlushDenormals>(*arena);
   worker_count = uint32_t(n);
   ray_counters.resize(size_t(n));
   worker_tiles.resize(size_t(n));

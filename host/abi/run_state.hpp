@@ -18,7 +18,6 @@
 #include <nimbus/nimbus.hpp>
 
 #include "abi/hook_watch.hpp"
-#include "core/denormals.hpp"
 #include "film/error_estimate.hpp"
 #include "film/film.hpp"
 
@@ -44,7 +43,6 @@ struct RunState {
   std::vector<int32_t> lightmix_elements;
 
   std::unique_ptr<tbb::task_arena> arena;
-  std::unique_ptr<ArenaFlushDenormals> arena_float_mode;  // every arena thread flushes denormals
   uint32_t worker_count = 1;
   std::thread::id main_thread;
   std::atomic<bool> *cancel = nullptr;  // set by Ctrl-C or the time budget; owned by the caller

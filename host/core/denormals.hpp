@@ -1,13 +1,11 @@
 // Flush-to-zero and denormals-are-zero (the FTZ and DAZ bits of x86's MXCSR) for every thread that
-// renders. Embree asks for both before its ray queries: arithmetic that meets a denormal takes a
-// microcode assist of about a hundred cycles, and axis-aligned geometry makes such values common in
-// traversal and in shading alike (docs/performance.md §1). Every render thread runs in the same mode, so
-// images stay the same at any thread count. Values below 2^-126 become zero, far below anything a pixel
-// can show.
+// renders: the main thread for the whole render, and every task the host runs in its arena (render tiles,
+// the tasks service's chunks) for the task's duration. Embree asks for both before its ray queries:
+// arithmetic that meets a denormal takes a microcode assist of about a hundred cycles, and axis-aligned
+// geometry makes such values common in traversal and in shading alike (docs/performance.md §1). Every render
+// thread runs in the same mode, so images stay the same at any thread count. Values below 2^-126 become zero,
+// far below anything a pixel can show.
 #pragma once
-
-#include <tbb/task_arena.h>
-#include <tbb/task_scheduler_observer.h>
 
 #if defined(__SSE__) || defined(__x86_64__)
 #include <xmmintrin.h>
@@ -35,34 +33,6 @@ class FlushDenormals {
 
  private:
   unsigned saved_;
-};
-
-// Every thread that joins `arena` flushes denormals while it works there (workers and callers of
-// execute alike); a thread that leaves gets its previous mode back.
-class ArenaFlushDenormals : public tbb::task_scheduler_observer {
- public:
-  explicit ArenaFlushDenormals(tbb::task_arena &arena) : tbb::task_scheduler_observer(arena) {
-    observe(true);
-  }
-  ~ArenaFlushDenormals() override { observe(false); }
-
-  void on_scheduler_entry(bool) override {
-    if (depth()++ == 0) saved() = read_float_mode();
-    write_float_mode(read_float_mode() | kFlushDenormals);
-  }
-  void on_scheduler_exit(bool) override {
-    if (--depth() == 0) write_float_mode(saved());
-  }
-
- private:
-  static unsigned &saved() {
-    thread_local unsigned mode = 0;
-    return mode;
-  }
-  static int &depth() {
-    thread_local int n = 0;
-    return n;
-  }
 };
 
 }  // namespace nimbus

@@ -6,6 +6,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/denormals.hpp"
+
 namespace nimbus {
 namespace {
 
@@ -23,6 +25,7 @@ nimbus_status_t render_tiles(const BoundPlugins &p, RunState &run, const Tiling 
   for (size_t t = 0; t < tiling.tiles.size(); ++t) run.tile_started[t].store(0, std::memory_order_relaxed);
   run.arena->execute([&] {
     tbb::parallel_for(size_t(0), tiling.tiles.size(), [&](size_t t) {
+      const FlushDenormals float_mode;
       const int wi = tbb::this_task_arena::current_thread_index();
       nimbus_thread_ctx_t tc{
           sizeof(nimbus_thread_ctx_t), uint32_t(wi < 0 ? 0 : wi), run.worker_count, 0, nullptr, 0};

@@ -11,6 +11,7 @@
 
 #include "abi/host_services.hpp"
 #include "abi/run_state.hpp"
+#include "core/denormals.hpp"
 #include "loader/plugin_registry.hpp"
 #include "loader/plugin_status.hpp"
 #include "render/bind_plugins.hpp"

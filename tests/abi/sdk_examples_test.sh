@@ -32,14 +32,8 @@ if [[ ${sanitize^^} == ON || ${sanitize^^} == TRUE || $sanitize == 1 ]]; then
   fi
 fi
 
-work=$(mktemp -d "$build/tests/sdk_examples.XXXXXX")
-ok=0
-trap 'if [[ $ok == 1 ]]; then rm -rf "$work"; else echo "files kept in $work" >&2; fi' EXIT
-step() { echo "== $*"; }
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
+source "$src/tests/support/shell_support.sh"
+make_scratch "$build" sdk_examples
 
 # Only the `sdk` install component: the test must not depend on every other target of the project being
 # built, and the SDK is what a plugin author installs. It must not drag in the runtime either.
@@ -91,10 +85,7 @@ for ex in "${examples[@]}"; do
   IFS=: read -r dir id target kind <<<"$ex"
   # The build tree's package (Nimbus_DIR=<build>): configure and build, headers from the source tree.
   step "configure and build $dir against the build tree"
-  env -u CMAKE_PREFIX_PATH -u Nimbus_DIR "$cmake" -S "$src/plugins/examples/$dir" -B "$work/buildtree-$dir" \
-    -G "$generator" -DCMAKE_MAKE_PROGRAM="$make_program" -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" \
-    -DCMAKE_BUILD_TYPE=Release -DNimbus_DIR="$build" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF \
-    --no-warn-unused-cli >"$work/configure-bt-$dir.log" 2>&1 || fail "configure $dir: $(cat "$work/configure-bt-$dir.log")"
+  configure_plugins "$src/plugins/examples/$dir" "$work/buildtree-$dir" "$work/configure-bt-$dir.log" -DNimbus_DIR="$build"
   "$cmake" --build "$work/buildtree-$dir" >"$work/build-bt-$dir.log" 2>&1 ||
     fail "build $dir against the build tree: $(cat "$work/build-bt-$dir.log")"
   "$cmake" "-DNM=$nm" "-DLIBS=$work/buildtree-$dir/lib$target.so" -P "$src/tests/loader/check_exports.cmake" ||
@@ -102,10 +93,7 @@ for ex in "${examples[@]}"; do
 
   step "configure, build and install $dir against $prefix"
   # The package registry and the environment must not supply another Nimbus: only $prefix may.
-  env -u CMAKE_PREFIX_PATH -u Nimbus_DIR "$cmake" -S "$src/plugins/examples/$dir" -B "$work/build-$dir" \
-    -G "$generator" -DCMAKE_MAKE_PROGRAM="$make_program" -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" \
-    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF \
-    --no-warn-unused-cli >"$work/configure-$dir.log" 2>&1 || fail "configure $dir: $(cat "$work/configure-$dir.log")"
+  configure_plugins "$src/plugins/examples/$dir" "$work/build-$dir" "$work/configure-$dir.log" -DCMAKE_PREFIX_PATH="$prefix"
   grep -q "^Nimbus_DIR:PATH=$prefix/lib/cmake/Nimbus$" "$work/build-$dir/CMakeCache.txt" ||
     fail "$dir found Nimbus elsewhere: $(grep ^Nimbus_DIR "$work/build-$dir/CMakeCache.txt")"
   "$cmake" --build "$work/build-$dir" >"$work/build-$dir.log" 2>&1 || fail "build $dir: $(cat "$work/build-$dir.log")"

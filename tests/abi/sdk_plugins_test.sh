@@ -19,14 +19,8 @@ if [[ ${sanitize^^} == ON || ${sanitize^^} == TRUE || $sanitize == 1 ]] && ! "$n
   exit 1
 fi
 
-work=$(mktemp -d "$build/tests/sdk_plugins.XXXXXX")
-ok=0
-trap 'if [[ $ok == 1 ]]; then rm -rf "$work"; else echo "files kept in $work" >&2; fi' EXIT
-step() { echo "== $*"; }
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
+source "$src/tests/support/shell_support.sh"
+make_scratch "$build" sdk_plugins
 
 prefix=$work/sdk
 step "install the sdk component into $prefix"
@@ -34,10 +28,7 @@ step "install the sdk component into $prefix"
   fail "SDK install: $(cat "$work/install.log")"
 
 step "configure plugins/ against $prefix alone"
-env -u CMAKE_PREFIX_PATH -u Nimbus_DIR "$cmake" -S "$src/plugins" -B "$work/build" -G "$generator" \
-  -DCMAKE_MAKE_PROGRAM="$make_program" -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" \
-  -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF \
-  --no-warn-unused-cli >"$work/configure.log" 2>&1 || fail "configure plugins/: $(cat "$work/configure.log")"
+configure_plugins "$src/plugins" "$work/build" "$work/configure.log" -DCMAKE_PREFIX_PATH="$prefix"
 grep -q "^Nimbus_DIR:PATH=$prefix/lib/cmake/Nimbus$" "$work/build/CMakeCache.txt" ||
   fail "plugins/ found Nimbus elsewhere: $(grep ^Nimbus_DIR "$work/build/CMakeCache.txt")"
 # Nothing of the host may be on any include path of the out-of-tree build.

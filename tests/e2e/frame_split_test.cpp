@@ -18,34 +18,9 @@
 namespace nimbus::e2e {
 namespace {
 
-// The glass sphere under a point light of scenes/caustics/sphere-point.yaml, small: a caustic only
-// photons render, with the caustics element and a LightMix layer per group.
-constexpr const char *kCausticScene = R"(render:
-  resolution: [96, 54]
-  iterations: 32
-  seed: 1
-  max_depth: 12
-  integrator: caustics
-  elements: [caustics, lightmix]
-camera: { position: [2.4, -2.9, 2.3], look_at: [0.35, 0.1, 0.25], up: [0, 0, 1], fov: 40 }
-materials:
-  floor: { type: diffuse, albedo: [0.7, 0.7, 0.7] }
-  wall:  { type: diffuse, albedo: [0.6, 0.55, 0.5] }
-  glass: { type: dielectric, ior: 1.5 }
-objects:
-  - { shape: rectangle, size: [8, 8], material: floor }
-  - { shape: rectangle, size: [8, 4], material: wall, transform: { rotate: [90, 0, 0], translate: [0, 3, 2] } }
-  - { shape: sphere, center: [0, 0, 0.5], radius: 0.5, material: glass }
-lights:
-  - { type: point, position: [-1.5, 0.3, 1.9], intensity: [9, 9, 9], group: key }
-  - { type: point, position: [1.5, -2.0, 2.5], intensity: [2, 2, 2], group: fill }
-)";
-
-std::string write_scene(const TestDir &dir) {
-  const std::string path = dir.file("sphere.yaml");
-  write_bytes(path, kCausticScene);
-  return path;
-}
+// scenes/split_sphere.yaml: a small glass sphere's caustic under a point light, with the caustics element
+// and a LightMix layer for each of its two lights.
+std::string split_scene() { return scene("split_sphere.yaml"); }
 
 // Renders `scene` with `extra` arguments into `out`; records a failure when it does not exit 0.
 bool render(const TestDir &dir, const std::string &scene, const std::string &out,
@@ -82,7 +57,7 @@ ProcessResult merge(const TestDir &dir, std::vector<std::string> parts, const st
 
 TEST(FrameSplit, PathTracerPartsMergeToTheWholeRenderBitForBit) {
   TestDir dir;
-  const std::string scene = write_scene(dir);
+  const std::string scene = split_scene();
   const std::vector<std::string> pt = {"--caustics", "off", "--iterations", "10"};
   ASSERT_TRUE(render(dir, scene, dir.file("whole.exr"), pt));
   // 10 iterations over 4 tasks: 3, 3, 2 and 2 of them, in reverse order on the command line.
@@ -119,7 +94,7 @@ TEST(FrameSplit, PathTracerPartsMergeToTheWholeRenderBitForBit) {
 // correct merge while a merge of correlated parts (every task tracing the same photons) exceeds it.
 TEST(FrameSplit, CausticsSolverMergeIsAsCloseToAnIndependentRenderAsAWholeRender) {
   TestDir dir;
-  const std::string scene = write_scene(dir);
+  const std::string scene = split_scene();
   ASSERT_TRUE(render(dir, scene, dir.file("whole.exr"), {}));
   ASSERT_TRUE(render(dir, scene, dir.file("other.exr"), {"--seed", "2"}));
   const std::vector<std::string> parts = render_parts(dir, scene, 4, {});
@@ -144,7 +119,7 @@ TEST(FrameSplit, CausticsSolverMergeIsAsCloseToAnIndependentRenderAsAWholeRender
 
 TEST(FrameSplit, MergeRefusesPartsOfOtherFramesOverlapsAndMissingTasks) {
   TestDir dir;
-  const std::string scene = write_scene(dir);
+  const std::string scene = split_scene();
   const std::vector<std::string> pt = {"--caustics", "off", "--iterations", "4"};
   const std::vector<std::string> parts = render_parts(dir, scene, 3, pt);
   std::vector<std::string> seed2 = pt;
@@ -180,7 +155,7 @@ TEST(FrameSplit, MergeRefusesPartsOfOtherFramesOverlapsAndMissingTasks) {
 
 TEST(FrameSplit, TaskArgumentsAreChecked) {
   TestDir dir;
-  const std::string scene = write_scene(dir);
+  const std::string scene = split_scene();
   ProcessResult r = run_nimbus({"render", scene, "--task", "4", "--tasks", "4"}, dir);
   EXPECT_TRUE(exited_with(r, 2)) << r.describe();
   EXPECT_NE(r.err.find("--task 4 is not one of the tasks 0 to 3"), std::string::npos) << r.err;
@@ -196,7 +171,7 @@ TEST(FrameSplit, TaskArgumentsAreChecked) {
 // pairs its own odd and even iterations.
 TEST(FrameSplit, TasksStopOnTheirOwnAndResumeOnlyThemselves) {
   TestDir dir;
-  const std::string scene = write_scene(dir);
+  const std::string scene = split_scene();
   const std::string part = dir.file("p.exr");
   ASSERT_TRUE(
       render(dir, scene, part, {"--caustics", "off", "--iterations", "8", "--task", "1", "--tasks", "2"}));

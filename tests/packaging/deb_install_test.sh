@@ -10,14 +10,8 @@
 set -euo pipefail
 build=$1 src=$2 cpack=$3 cmake=$4 generator=$5 make_program=$6 cc=$7 cxx=$8
 
-work=$(mktemp -d "$build/tests/deb.XXXXXX")
-ok=0
-trap 'if [[ $ok == 1 ]]; then rm -rf "$work"; else echo "files kept in $work" >&2; fi' EXIT
-step() { echo "== $*"; }
-fail() {
-  echo "FAIL: $*" >&2
-  exit 1
-}
+source "$src/tests/support/shell_support.sh"
+make_scratch "$build" deb
 for tool in dpkg dpkg-deb file readelf help2man; do
   command -v $tool >/dev/null || fail "$tool is missing (bash packaging/setup.sh installs it)"
 done
@@ -85,10 +79,7 @@ grep -Eq "^nimbus\.caustics +integrator .* loaded +$root/usr/lib/" <<<"$listing"
 
 step "build the SDK examples against $root/usr"
 for dir in c-minimal cpp-camera-path; do
-  env -u CMAKE_PREFIX_PATH -u Nimbus_DIR "$cmake" -S "$src/plugins/examples/$dir" -B "$work/ex-$dir" \
-    -G "$generator" -DCMAKE_MAKE_PROGRAM="$make_program" -DCMAKE_C_COMPILER="$cc" -DCMAKE_CXX_COMPILER="$cxx" \
-    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$root/usr" -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF \
-    --no-warn-unused-cli >"$work/configure-$dir.log" 2>&1 || fail "configure $dir: $(cat "$work/configure-$dir.log")"
+  configure_plugins "$src/plugins/examples/$dir" "$work/ex-$dir" "$work/configure-$dir.log" -DCMAKE_PREFIX_PATH="$root/usr"
   grep -q "^Nimbus_DIR:PATH=$root/usr/lib/.*cmake/Nimbus$" "$work/ex-$dir/CMakeCache.txt" ||
     fail "$dir found Nimbus elsewhere: $(grep ^Nimbus_DIR "$work/ex-$dir/CMakeCache.txt")"
   "$cmake" --build "$work/ex-$dir" >"$work/build-$dir.log" 2>&1 || fail "build $dir: $(cat "$work/build-$dir.log")"

@@ -19,25 +19,6 @@ import sys
 import tempfile
 import time
 
-SCENE = """render:
-  resolution: [96, 54]
-  seed: 1
-  max_depth: 12
-  integrator: caustics
-  elements: [caustics, lightmix]
-camera: { position: [2.4, -2.9, 2.3], look_at: [0.35, 0.1, 0.25], up: [0, 0, 1], fov: 40 }
-materials:
-  floor: { type: diffuse, albedo: [0.7, 0.7, 0.7] }
-  wall:  { type: diffuse, albedo: [0.6, 0.55, 0.5] }
-  glass: { type: dielectric, ior: 1.5 }
-objects:
-  - { shape: rectangle, size: [8, 8], material: floor }
-  - { shape: rectangle, size: [8, 4], material: wall, transform: { rotate: [90, 0, 0], translate: [0, 3, 2] } }
-  - { shape: sphere, center: [0, 0, 0.5], radius: 0.5, material: glass }
-lights:
-  - { type: point, position: [-1.5, 0.3, 1.9], intensity: [9, 9, 9], group: key }
-  - { type: point, position: [1.5, -2.0, 2.5], intensity: [2, 2, 2], group: fill }
-"""
 TASKS, ITERATIONS = 8, 32
 NODE = "nimbusnode"
 
@@ -186,9 +167,7 @@ def main(build, source):
     submit = os.path.join(source, "packaging", "slurm", "nimbus-slurm-submit")
     work = tempfile.mkdtemp(prefix="slurm.", dir=os.path.join(build, "tests"))
     os.chmod(work, 0o755)
-    scene = os.path.join(work, "sphere.yaml")
-    with open(scene, "w") as f:
-        f.write(SCENE)
+    scene = os.path.join(source, "tests", "e2e", "scenes", "split_sphere.yaml")
     cluster = Cluster(work)
     ok = False
     try:
