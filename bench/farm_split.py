@@ -5,30 +5,27 @@
         [--seeds 3] [--reference-iterations 2048] [--threads 2] [--nimbus build/bin/nimbus]
 
 Renders an independent reference with the light tracer (nimbus.lt, which converges on point-light
-caustics), then for each seed: the whole frame in one render, and its N tasks one after another
+caustics), compared over the pixels it covers (bench/error_vs_time.py --covered-only: not those seen
+through glass or in mirrors, which a light tracer cannot render), then for each seed: the whole frame in one render, and its N tasks one after another
 (`nimbus render --task K --tasks N`, each with all the threads, as an array runs on one node) followed by
-`nimbus merge`. Prints per seed and as medians: the relMSE (luminance) of both against the reference and
+`nimbus merge`. Prints per seed and as medians: the relMSE of both against the reference and
 their ratio, and the wall time of the single render against the tasks plus the merge (the overhead of the
 parts and the merge). Not part of CI.
 """
 import argparse
-import json
 import os
 import statistics
 import tempfile
 import time
 
-from nimbus_tools import run
+from error_vs_time import region_mask, relmse
+from nimbus_tools import read_rgb, run
 
 
 def timed(cmd):
     t0 = time.perf_counter()
     run(cmd, echo=False)
     return time.perf_counter() - t0
-
-
-def relmse(nimbus, test, ref):
-    return json.loads(run([nimbus, "compare", test, ref, "--json"], echo=False))["relmse_luminance"]
 
 
 def main():
@@ -46,7 +43,10 @@ def main():
         ref = os.path.join(tmp, "reference.exr")
         seconds = timed([nimbus, "render", args.scene, "--integrator", "lt", "--seed", "1000", "--iterations",
                          str(args.reference_iterations), "-o", ref] + threads)
-        print(f"reference: nimbus.lt, {args.reference_iterations} iterations, {seconds:.0f} s")
+        ref_rgb = read_rgb(ref)
+        mask = region_mask(ref_rgb, covered_only=True, crop=None)
+        print(f"reference: nimbus.lt, {args.reference_iterations} iterations, {seconds:.0f} s, "
+              f"{int(mask.sum())} covered pixels")
         print("seed, relMSE single, relMSE merged, merged/single, seconds single, seconds tasks+merge, ratio")
         rows = []
         for seed in range(1, args.seeds + 1):
@@ -60,7 +60,8 @@ def main():
                                   str(args.tasks)] + common)
             merged = os.path.join(tmp, f"merged{seed}.exr")
             t_split += timed([nimbus, "merge"] + parts + ["-o", merged])
-            e_single, e_merged = relmse(nimbus, single, ref), relmse(nimbus, merged, ref)
+            e_single = relmse(read_rgb(single), ref_rgb, mask)
+            e_merged = relmse(read_rgb(merged), ref_rgb, mask)
             rows.append((e_single, e_merged, e_merged / e_single, t_single, t_split, t_split / t_single))
             print(f"{seed}, {e_single:.5f}, {e_merged:.5f}, {rows[-1][2]:.3f}, {t_single:.2f}, {t_split:.2f}, "
                   f"{rows[-1][5]:.3f}", flush=True)
