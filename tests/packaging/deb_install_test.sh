@@ -6,7 +6,8 @@
 # copyright and changelog; a man page for nimbus, each subcommand and nimbus-slurm-submit, made from the
 # --help texts; bash completion; the Slurm scripts), install it with dpkg into an empty root, render the
 # default scene there with <root>/usr/bin/nimbus finding its plugins, OCIO config and scene by itself,
-# and build the SDK examples (plugins/examples) against the SDK in that root.
+# build the SDK examples (plugins/examples) against the SDK in that root and load them, and check that the
+# installed nimbus-slurm-submit submits the installed sbatch scripts.
 set -euo pipefail
 build=$1 src=$2 cpack=$3 cmake=$4 generator=$5 make_program=$6 cc=$7 cxx=$8
 
@@ -78,7 +79,7 @@ grep -Eq "^nimbus\.caustics +integrator .* loaded +$root/usr/lib/" <<<"$listing"
 [[ -s $work/out/default.exr && -s $work/out/default.png ]] || fail "no EXR and PNG from the installed nimbus"
 
 step "build the SDK examples against $root/usr"
-for dir in c-minimal cpp-camera-path; do
+for dir in c-minimal cpp-minimal cpp-camera-path c-guide; do
   configure_plugins "$src/plugins/examples/$dir" "$work/ex-$dir" "$work/configure-$dir.log" -DCMAKE_PREFIX_PATH="$root/usr"
   grep -q "^Nimbus_DIR:PATH=$root/usr/lib/.*cmake/Nimbus$" "$work/ex-$dir/CMakeCache.txt" ||
     fail "$dir found Nimbus elsewhere: $(grep ^Nimbus_DIR "$work/ex-$dir/CMakeCache.txt")"
@@ -88,5 +89,15 @@ done
 listing=$(NIMBUS_PLUGIN_PATH="$work/examples/lib/nimbus/plugins" "$nimbus" plugins 2>&1)
 grep -Eq "^org\.example\.normals +integrator .* loaded" <<<"$listing" || fail "example not loaded: $listing"
 grep -Eq "^org\.example\.balance +integrator .* loaded" <<<"$listing" || fail "example not loaded: $listing"
+grep -Eq "^org\.example\.eyelight +integrator .* loaded" <<<"$listing" || fail "example not loaded: $listing"
+grep -Eq "^org\.example\.independence +guiding .* loaded" <<<"$listing" || fail "example not loaded: $listing"
+
+step "the installed nimbus-slurm-submit finds its sbatch scripts"
+plan=$("$root/usr/bin/nimbus-slurm-submit" "$root/usr/share/nimbus/scenes/default.yaml" -o "$work/farm/out.exr" \
+  --tasks 3 --nimbus "$nimbus" --dry-run -- --iterations 6 2>&1) || fail "nimbus-slurm-submit --dry-run: $plan"
+grep -q -- "--array 0-2 .*$root/usr/share/nimbus/slurm/nimbus-render-task.sbatch" <<<"$plan" ||
+  fail "the array is not submitted with the installed script: $plan"
+grep -q -- "--dependency afterok:.*$root/usr/share/nimbus/slurm/nimbus-merge.sbatch" <<<"$plan" ||
+  fail "the merge is not submitted with the installed script: $plan"
 ok=1
 echo "the package installed into an empty root, rendered its default scene, and the SDK examples built against it"
