@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/expected.hpp"
 #include "film/film.hpp"
 
 namespace nimbus {
@@ -32,5 +33,8 @@ ExrImage layered_exr_image(uint32_t width, uint32_t height, const std::vector<Ex
 // Every active element of `film` resolved (sums / N), named by exr_channel_names.
 ExrImage film_exr_image(const Film &film, const std::vector<std::pair<std::string, std::string>> &string_meta,
                         const std::vector<std::pair<std::string, double>> &numeric_meta);
+
+// `image` as a single-part EXR at `path`, written atomically (atomic_file.hpp).
+Status write_exr_image(const std::string &path, const ExrImage &image);
 
 }  // namespace nimbus

@@ -78,23 +78,23 @@ ExrImage film_exr_image(const Film &film, const std::vector<std::pair<std::strin
   return layered_exr_image(film.width(), film.height(), layers, string_meta, numeric_meta);
 }
 
-Status Film::write_exr(const std::string &path,
-                       const std::vector<std::pair<std::string, std::string>> &string_meta,
-                       const std::vector<std::pair<std::string, double>> &numeric_meta) const {
-  const ExrImage image = film_exr_image(*this, string_meta, numeric_meta);
+Status write_exr_image(const std::string &path, const ExrImage &image) {
   return write_atomically(path, [&](const std::string &tmp) {
     return write_oiio_image("openexr", tmp, image.spec, image.pixels.data());
   });
+}
+
+Status Film::write_exr(const std::string &path,
+                       const std::vector<std::pair<std::string, std::string>> &string_meta,
+                       const std::vector<std::pair<std::string, double>> &numeric_meta) const {
+  return write_exr_image(path, film_exr_image(*this, string_meta, numeric_meta));
 }
 
 Status write_layered_exr(const std::string &path, uint32_t width, uint32_t height,
                          const std::vector<ExrLayer> &layers,
                          const std::vector<std::pair<std::string, std::string>> &string_meta,
                          const std::vector<std::pair<std::string, double>> &numeric_meta) {
-  const ExrImage image = layered_exr_image(width, height, layers, string_meta, numeric_meta);
-  return write_atomically(path, [&](const std::string &tmp) {
-    return write_oiio_image("openexr", tmp, image.spec, image.pixels.data());
-  });
+  return write_exr_image(path, layered_exr_image(width, height, layers, string_meta, numeric_meta));
 }
 
 }  // namespace nimbus

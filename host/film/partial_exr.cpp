@@ -87,13 +87,13 @@ Status write_partial_exr(const Film &film, const std::string &path,
 }
 
 Expected<PartialImage> read_partial_exr(const std::string &path) {
-  auto layers = read_exr_layers(path);  // part 0: the metadata, and a check of the file's structure
-  if (!layers) return layers.error();
+  auto header = read_exr_header(path);  // part 0: the metadata, and a check of the file's structure
+  if (!header) return header.error();
   PartialImage out;
-  out.width = layers->width, out.height = layers->height;
-  for (const auto &[key, value] : layers->strings)
+  out.width = header->width, out.height = header->height;
+  for (const auto &[key, value] : header->strings)
     if (key.rfind("nimbus:", 0) == 0) out.strings[key.substr(7)] = value;
-  for (const auto &[key, value] : layers->numbers)
+  for (const auto &[key, value] : header->numbers)
     if (key.rfind("nimbus:", 0) == 0) out.numbers[key.substr(7)] = value;
 
   const auto fail = [&](const std::string &why) { return Error{"cannot read '" + path + "': " + why}; };
@@ -107,49 +107,43 @@ Expected<PartialImage> read_partial_exr(const std::string &path) {
   if (spec.width != int(out.width) || spec.height != int(out.height) || spec.x != 0 || spec.y != 0)
     return fail("its sums part is not the size of its image");
   const size_t n = size_t(spec.nchannels), pixels = size_t(out.width) * out.height;
-  // Channels pair up as <channel>.lo, <channel>.hi; OpenEXR stores them sorted, so group by element.
-  std::map<std::string, size_t> low, high;  // image channel name -> index of its word in the sums part
+  // Channels pair up as <channel>.lo, <channel>.hi, in whatever order the file stores them.
+  std::map<std::string, size_t> low, high;        // image channel name -> index of its word in the sums part
+  std::map<std::string, uint32_t> channel_count;  // element -> its channels
   for (int c = 0; c < spec.nchannels; ++c) {
     const std::string name = spec.channel_name(c);
     const bool is_low = name.size() > 3 && name.compare(name.size() - 3, 3, kLow) == 0;
     const bool is_high = name.size() > 3 && name.compare(name.size() - 3, 3, kHigh) == 0;
     if (!is_low && !is_high) return fail("unexpected sums channel '" + name + "'");
-    if (!(is_low ? low : high).emplace(name.substr(0, name.size() - 3), size_t(c)).second)
+    const std::string channel = name.substr(0, name.size() - 3);
+    if (!(is_low ? low : high).emplace(channel, size_t(c)).second)
       return fail("sums channel '" + name + "' appears twice");
+    if (is_low) ++channel_count[element_of(channel)];
   }
+  if (high.size() != low.size()) return fail("its '.lo' and '.hi' sums channels do not pair up");
+  if (!channel_count.count("beauty")) return fail("no beauty sums");
   std::vector<uint32_t> words(pixels * n);
   if (!in->read_image(1, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT, words.data()))
     return fail(one_line(in->geterror()));
-  // Element order: beauty first, then as part 0's layers list them (alphabetical; merge matches by name).
-  std::map<std::string, std::vector<std::string>> by_element;
-  for (const auto &[channel, index] : low) {
-    if (!high.count(channel)) return fail("sums channel '" + channel + ".lo' has no '.hi'");
-    by_element[element_of(channel)].push_back(channel);
-  }
-  if (high.size() != low.size()) return fail("a sums channel '.hi' has no '.lo'");
-  if (!by_element.count("beauty")) return fail("no beauty sums");
+  // Beauty first, then the other elements by name (merge matches them by name).
   std::vector<std::string> order = {"beauty"};
-  for (const auto &[element, channels] : by_element)
+  for (const auto &[element, count] : channel_count)
     if (element != "beauty") order.push_back(element);
   for (const std::string &element : order) {
-    const std::vector<std::string> &channels = by_element[element];
-    // The layer's channels in image order (R, G, B; or Y), as part 0's reader ranks them.
-    const ImageLayer &layer = layers->layers[element];
-    if (layer.channel_names.size() != channels.size())
-      return fail("element '" + element + "' has " + std::to_string(channels.size()) + " sums channels and " +
-                  std::to_string(layer.channel_names.size()) + " image channels");
     PartialElement e;
     e.name = element;
-    e.channels = uint32_t(channels.size());
+    e.channels = channel_count[element];
     if (e.channels != 1 && e.channels != 3)
       return fail("element '" + element + "' has neither 1 nor 3 channels");
     e.sums.resize(pixels * e.channels);
+    // The channels in image order (R, G, B; or Y), named as the writer names them.
+    const std::vector<std::string> names = exr_channel_names(element == "beauty" ? "" : element, e.channels);
     for (uint32_t k = 0; k < e.channels; ++k) {
-      const std::string &channel = layer.channel_names[k];
-      if (!low.count(channel)) return fail("no sums for channel '" + channel + "'");
-      const size_t lo = low[channel], hi = high[channel];
+      const auto lo = low.find(names[k]), hi = high.find(names[k]);
+      if (lo == low.end() || hi == high.end()) return fail("no sums for channel '" + names[k] + "'");
       for (size_t p = 0; p < pixels; ++p) {
-        const uint64_t bits = uint64_t(words[p * n + lo]) | (uint64_t(words[p * n + hi]) << 32);
+        const uint64_t bits =
+            uint64_t(words[p * n + lo->second]) | (uint64_t(words[p * n + hi->second]) << 32);
         std::memcpy(&e.sums[p * e.channels + k], &bits, sizeof bits);
       }
     }
