@@ -8,25 +8,29 @@ namespace {
 
 // The microfacet normal that scatters wo into wi, by reflection or refraction.
 struct HalfVector {
-  Vec3f wm;    // upper hemisphere
-  float etap;  // relative IOR seen from wo: 1 for reflection
+  Vec3f wm;        // upper hemisphere
+  float etap;      // relative IOR seen from wo: 1 for reflection
+  float etap_rev;  // relative IOR seen from wi
+  float cos_m;     // reflection: wo . wm, equal to wi . wm, as |wo + wi| / 2 (the same from either side)
   bool reflection;
 };
 
 // pbrt-v4's generalised half vector wm ~ etap wi + wo, which covers reflection (etap = 1) and Walter's
 // refraction half vector alike. Empty for grazing directions, a degenerate sum, or a microfacet that one
-// of the two directions sees from behind (no single microfacet can connect them).
+// of the two directions sees from behind (no single microfacet can connect them). Refraction sums the
+// direction below the surface, scaled by eta, and the one above, whichever of the two is wo: the half
+// vector of (wi, wo) is then bitwise that of (wo, wi), so a pdf and its reverse agree exactly.
 std::optional<HalfVector> half_vector(const Vec3f &wo, const Vec3f &wi, float eta) {
   const float cos_o = cos_theta(wo), cos_i = cos_theta(wi);
   if (cos_o == 0 || cos_i == 0) return std::nullopt;
   const bool reflection = cos_o * cos_i > 0;
-  const float etap = reflection ? 1.0f : (cos_o > 0 ? eta : 1 / eta);
-  const Vec3f h = wi * etap + wo;
+  const Vec3f h = reflection ? wi + wo : (cos_o > 0 ? wi * eta + wo : wo * eta + wi);
   const float len2 = length_squared(h);
   if (!(len2 > 0)) return std::nullopt;
   const Vec3f wm = face_forward(h / std::sqrt(len2), Vec3f(0, 0, 1));
   if (dot(wm, wi) * cos_i <= 0 || dot(wm, wo) * cos_o <= 0) return std::nullopt;
-  return HalfVector{wm, etap, reflection};
+  if (reflection) return HalfVector{wm, 1, 1, std::copysign(0.5f * std::sqrt(len2), cos_o), true};
+  return cos_o > 0 ? HalfVector{wm, eta, 1 / eta, 0, false} : HalfVector{wm, 1 / eta, eta, 0, false};
 }
 
 BsdfSample delta_sample(const Vec3f &wi, float f, uint32_t lobe, float etap) {
@@ -93,12 +97,14 @@ Rgb DielectricBsdf::eval(const Vec3f &wo, const Vec3f &wi, TransportMode mode, f
   const std::optional<HalfVector> h = half_vector(wo, wi, eta_);
   if (!h) return Rgb(0);
   const Vec3f &wm = h->wm;
+  // Transmittance from the side above the surface, so that eval(wi, wo) computes the same number.
+  const Vec3f &above = cos_theta(wo) > 0 ? wo : wi, &below = cos_theta(wo) > 0 ? wi : wo;
   const float fresnel = h->reflection
-                            ? fresnel_dielectric(dot(wo, wm), eta_)
-                            : fresnel_dielectric_transmittance(abs_dot(wo, wm), abs_dot(wi, wm), h->etap);
+                            ? fresnel_dielectric(h->cos_m, eta_)
+                            : fresnel_dielectric_transmittance(abs_dot(above, wm), abs_dot(below, wm), eta_);
   const float f = f_rough(wo, wi, wm, h->etap, fresnel, h->reflection, mode);
   const float p_fwd = pdf_rough(wo, wi, wm, h->etap, fresnel, h->reflection);
-  const float p_rev = pdf_rough(wi, wo, wm, 1 / h->etap, fresnel, h->reflection);
+  const float p_rev = pdf_rough(wi, wo, wm, h->etap_rev, fresnel, h->reflection);
   if (!std::isfinite(f) || !std::isfinite(p_fwd) || !std::isfinite(p_rev)) return Rgb(0);
   if (pdf_fwd) *pdf_fwd = p_fwd;
   if (pdf_rev) *pdf_rev = p_rev;
@@ -133,29 +139,24 @@ BsdfSample DielectricBsdf::sample_specular(const Vec3f &wo, float uc, TransportM
 
 BsdfSample DielectricBsdf::sample_rough(const Vec3f &wo, float uc, Vec2f u, TransportMode mode) const {
   const Vec3f wm = distrib_.sample_wm(wo, u);
-  const float r = fresnel_dielectric(dot(wo, wm), eta_);
   BsdfSample s;
-  if (uc < r) {
-    const Vec3f wi = reflect(wo, wm);
-    if (!same_hemisphere(wo, wi)) return {};
-    s.wi = wi;
-    s.f = Rgb(f_rough(wo, wi, wm, 1, r, true, mode));
-    s.pdf = pdf_rough(wo, wi, wm, 1, r, true);
-    s.pdf_rev = pdf_rough(wi, wo, wm, 1, r, true);
+  if (uc < fresnel_dielectric(dot(wo, wm), eta_)) {
+    s.wi = reflect(wo, wm);
+    if (!same_hemisphere(wo, s.wi)) return {};
     s.lobe = NIMBUS_LOBE_REFLECTION | NIMBUS_LOBE_GLOSSY;
-    return checked_sample(s);
+  } else {
+    const std::optional<Refraction> t = refract(wo, wm, eta_);
+    if (!t || same_hemisphere(wo, t->wt) || t->wt.z == 0) return {};
+    s.wi = t->wt;
+    s.eta = t->etap;
+    s.lobe = NIMBUS_LOBE_TRANSMISSION | NIMBUS_LOBE_GLOSSY;
   }
-  const std::optional<Refraction> t = refract(wo, wm, eta_);
-  if (!t || same_hemisphere(wo, t->wt) || t->wt.z == 0) return {};
-  const Vec3f &wi = t->wt;
-  // Chosen with probability 1 - r; T is that same number, computed as eval() does so both agree.
-  const float tr = fresnel_dielectric_transmittance(abs_dot(wo, wm), abs_dot(wi, wm), t->etap);
-  s.wi = wi;
-  s.f = Rgb(f_rough(wo, wi, wm, t->etap, tr, false, mode));
-  s.pdf = pdf_rough(wo, wi, wm, t->etap, tr, false);
-  s.pdf_rev = pdf_rough(wi, wo, wm, 1 / t->etap, tr, false);
-  s.eta = t->etap;
-  s.lobe = NIMBUS_LOBE_TRANSMISSION | NIMBUS_LOBE_GLOSSY;
+  // The weight and densities are eval()'s at the chosen direction, from the half vector it rebuilds:
+  // near IOR 1 or at grazing angles the rebuild differs from wm by more than rounding, and a sample that
+  // eval() would give zero density (its rebuilt microfacet flips side) must not be returned with a
+  // density that every MIS weight and pdf() call elsewhere would contradict.
+  s.f = eval(wo, s.wi, mode, &s.pdf, &s.pdf_rev);
+  if (!(s.pdf > 0)) return {};
   return checked_sample(s);
 }
 
