@@ -12,25 +12,24 @@ eligible merge technique, which nimbus.caustics renders exactly as nimbus.pt doe
 caustics element. With REF, also each render's relMSE and the mean of their bias estimate
 ((a + b) / 2 - r)^2 - var / 2, so relMSE ~ variance + bias^2. Images are read by nimbus_tools.read_rgb;
 --crop limits every figure to the pixels [X0, X1) x [Y0, Y1) (a
-caustic's region). Not part of CI.
+caustic's region), and --covered-only (with REF) to the pixels a light-traced reference covers, as
+bench/error_vs_time.py's option of that name does. Not part of CI.
 """
 import argparse
 
 import numpy as np
 
 import nimbus_tools
+from error_vs_time import region_mask
 
 
-CROP = None  # (x0, y0, x1, y1) or None: the whole image
+PIXELS = None  # boolean rows x columns mask of the pixels compared, or None: the whole image
 
 
 def read_rgb(path, layer):
-    """The element's R, G, B, limited to CROP, shape (pixels, 3)."""
+    """The element's R, G, B at the PIXELS compared, shape (pixels, 3)."""
     rgb = nimbus_tools.read_rgb(path, layer)
-    if CROP:
-        x0, y0, x1, y1 = CROP
-        rgb = rgb[y0:y1, x0:x1]
-    return rgb.reshape(-1, 3)
+    return rgb.reshape(-1, 3) if PIXELS is None else rgb[PIXELS]
 
 
 def relative_variance(x, y, ref):
@@ -45,9 +44,14 @@ def main():
     ap.add_argument("b")
     ap.add_argument("--reference")
     ap.add_argument("--crop", help="X0,Y0,X1,Y1: pixels [X0, X1) x [Y0, Y1) only")
+    ap.add_argument("--covered-only", action="store_true", help="only the pixels the reference covers")
     args = ap.parse_args()
-    global CROP
-    CROP = tuple(int(v) for v in args.crop.split(",")) if args.crop else None
+    if args.covered_only and not args.reference:
+        ap.error("--covered-only needs --reference")
+    crop = tuple(int(v) for v in args.crop.split(",")) if args.crop else None
+    if crop or args.covered_only:
+        global PIXELS
+        PIXELS = region_mask(nimbus_tools.read_rgb(args.reference or args.a, "beauty"), args.covered_only, crop)
     a, b = read_rgb(args.a, "beauty"), read_rgb(args.b, "beauty")
     try:
         ca, cb = read_rgb(args.a, "caustics"), read_rgb(args.b, "caustics")

@@ -110,7 +110,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     ScheduleConfig cfg;
     cfg.camera_paths = cfg.frame_pixels = std::max<uint64_t>(1, uint64_t(width_) * height_);
     schedule_ = PhotonSchedule(cfg);
-    useful_.reset(armed_ ? size_t(width_) * height_ : 0);
+    const size_t pixels = armed_ ? size_t(width_) * height_ : 0;
+    useful_.reset(pixels), pixel_radius_.reset(pixels);
     pass_.release();
     map_active_ = rebuild_map_ = false;
     map_request_ = 0, map_reach_ = 0, photon_work_ = 0;
@@ -170,7 +171,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
               CausticsRecord &rec) {
     if (map_active_) {
       MergingPath path(merge_, lookup_radii_[ctx], tallies_[ctx], guide_ ? &marks_[ctx] : nullptr,
-                       importance_, mix64(rng.state ^ rng.inc));
+                       importance_, mix64(rng.state ^ rng.inc), pixel_radius_, size_t(y) * width_ + x);
       trace(ctx, x, y, rng, rec, path);
     } else if (classify_) {
       ClassifyingPath path(emitters_, services().bsdf, host().get());
@@ -206,7 +207,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       uint64_t camera_work = 0, lookup_work = 0;
       std::array<uint64_t, kLookupClasses> class_work{};
       for (CameraTally &t : tallies_) {
-        camera_work += t.work, stats_.mis_clamped += t.mis_clamped;
+        camera_work += t.work, stats_.camera_done(t);
         for (uint32_t c = 0; c < kLookupClasses; ++c) class_work[c] += t.lookup_work[c];
         t = {};
       }
@@ -222,6 +223,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       const EfficiencySample e{summary.v_merge, summary.v_camera, rho, double(camera_work) / n_cam,
                                per_photon_path};
       schedule_.iteration_done(iteration, summary.useful, e);
+      pixel_radius_.end_iteration();
       ++stats_.map_iterations;
     }
     return NIMBUS_OK;
@@ -246,7 +248,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     RadiusHistogram radii;
     for (RadiusHistogram &r : lookup_radii_) radii.add(r);
     w.put_array(std::as_const(radii).counts());
-    useful_.save(w);
+    useful_.save(w), pixel_radius_.save(w);
     roulette_.save(w);
     importance_.save(w), pass_importance_.save(w);
     emission_selection_.save(w);
@@ -268,6 +270,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     float reach = 0;
     RadiusHistogram radii;
     UsefulPixels useful = useful_;
+    PixelRadius pixel_radius = pixel_radius_;
     LookupRoulette roulette;
     ImportanceMap importance = importance_, pass_importance = pass_importance_;
     EmissionSelection selection = emission_selection_;
@@ -275,22 +278,19 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     std::vector<uint64_t> used;
     SolverStats stats;
     if (!(schedule.restore(r) && r.get(work) && r.get(request) && r.get(reach) &&
-          r.get_array(radii.counts()) && useful.restore(r) && roulette.restore(r) && importance.restore(r) &&
-          pass_importance.restore(r) && selection.restore(r) && emission_map.restore(r) &&
-          PathUse::read_used(r, used) && r.get(stats) && r.done()))
+          r.get_array(radii.counts()) && useful.restore(r) && pixel_radius.restore(r) &&
+          roulette.restore(r) && importance.restore(r) && pass_importance.restore(r) &&
+          selection.restore(r) && emission_map.restore(r) && PathUse::read_used(r, used) && r.get(stats) &&
+          r.done()))
       return NIMBUS_E_INVALID_ARG;
     emission_selection_ = std::move(selection), pending_used_ = std::move(used);
     emitters_.emission_map() = std::move(emission_map);
     emitters_.emission_map().update();  // the densities the current map was traced with
     schedule_ = schedule, photon_work_ = work, map_request_ = request, map_reach_ = reach;
-    roulette_ = roulette;
-    importance_ = std::move(importance), pass_importance_ = std::move(pass_importance);
-    bool first = true;
-    for (RadiusHistogram &h : lookup_radii_) {
-      h.clear();
-      if (first) h.add(radii), first = false;
-    }
-    useful_ = std::move(useful), stats_ = stats;
+    roulette_ = roulette, importance_ = std::move(importance), pass_importance_ = std::move(pass_importance);
+    for (RadiusHistogram &h : lookup_radii_) h.clear();
+    if (lookup_radii_.size() > 0) lookup_radii_[0u].add(radii);
+    useful_ = std::move(useful), pixel_radius_ = std::move(pixel_radius), stats_ = stats;
     rebuild_map_ = schedule_.map_active() && schedule_.passes() > 0;
     return NIMBUS_OK;
   }
@@ -388,9 +388,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   std::vector<uint64_t> pending_used_;    // a resumed map's lookup flags, until it is traced again
   bool map_active_ = false;
   UsefulPixels useful_;
+  PixelRadius pixel_radius_;
   LookupRoulette roulette_;
-  // The format of save_state's bytes.
-  static constexpr uint32_t kStateVersion = 5;
+  static constexpr uint32_t kStateVersion = 6;  // the format of save_state's bytes
   SolverStats stats_;
 };
 

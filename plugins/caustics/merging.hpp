@@ -20,6 +20,7 @@
 #include "path_use.hpp"
 #include "photon_map.hpp"
 #include "photon_windows.hpp"
+#include "pixel_radius.hpp"
 #include "schedule.hpp"
 #include "sharpness.hpp"
 
@@ -91,6 +92,7 @@ struct CameraTally {
   uint64_t work = 0;                                      // budget work units (schedule.hpp) of the paths
   std::array<uint64_t, kLookupClasses> lookup_work = {};  // and of their lookups (LookupCost), per class
   uint64_t mis_clamped = 0;                               // paths whose MIS weights met an overflow
+  uint64_t first_lookups = 0, shrunk_lookups = 0;  // first lookups, and those below the schedule radius
 };
 
 class MergingPath {
@@ -100,10 +102,18 @@ class MergingPath {
   // tally: this worker's counts, which this path adds to. marks: this worker's importance marks (null
   // when no guide is bound).
   // key: the camera sample's own hash, from which the lookup roulette draws (not from the camera path's
-  // random numbers, which stay those of nimbus.pt).
+  // random numbers, which stay those of nimbus.pt). pixel: the sample's pixel in pixel_radius.
   MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, CameraTally &tally,
-              ImportanceMarks *marks, const ImportanceMap &importance, uint64_t key)
-      : mc_(mc), radii_(lookup_radii), tally_(tally), marks_(marks), importance_(importance), key_(key) {}
+              ImportanceMarks *marks, const ImportanceMap &importance, uint64_t key,
+              PixelRadius &pixel_radius, size_t pixel)
+      : mc_(mc),
+        radii_(lookup_radii),
+        tally_(tally),
+        marks_(marks),
+        importance_(importance),
+        pixel_radius_(pixel_radius),
+        pixel_(pixel),
+        key_(key) {}
   ~MergingPath() {
     if (mis_.clamped) ++tally_.mis_clamped;
   }
@@ -126,8 +136,6 @@ class MergingPath {
     tally_.work += 2 * kRayWork;  // the ray that found the vertex and its shadow ray
     const bool rough = !is_sharp(mc_.bsdf, mc_.host, *v.ix, v.lobes);
     lookup_ = mis_.append(rough);
-    if (lookup_ && mis_.rough_count == 1)
-      radius_ = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
     const LookupClass cls = lookup_class(mis_.rough_count);
     q_ = mc_.lookup_probability[cls];
     if (lookup_) {
@@ -135,6 +143,11 @@ class MergingPath {
       // density like the lookup probability does.
       window_ = mc_.clock.window(v.time_u, mc_.time_half_width);
       neff_ = effective_photons(mc_, Vec3f::load(v.ix->p)) * window_.rho;
+    }
+    if (lookup_ && cls == kFirstLookup) {
+      const float r = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
+      radius_ = pixel_radius_.radius(pixel_, r, neff_);
+      shrunk_ = radius_ < r;
     }
     // A photon has at least 2 vertices (a sharp one and x_s): paths of >= segments + 2 segments.
     if (lookup_ && v.segments + 2 <= mc_.max_depth &&
@@ -144,6 +157,10 @@ class MergingPath {
                                          window_, v.lambda, rec);
       tally_.lookup_work[cls] += c.work();
       rec.lookup_moment[cls] += q_ * c.light * c.light;
+      if (cls == kFirstLookup) {
+        pixel_radius_.found(pixel_, c.evaluated, radius_, neff_);
+        ++tally_.first_lookups, tally_.shrunk_lookups += shrunk_ ? 1 : 0;
+      }
       // A lookup that found light marks where the camera needs photons (spec 6.3).
       if (marks_ && c.light > 0)
         marks_->add(importance_.grid(), Vec3f::load(v.ix->p), radius_, importance_.importance(length_));
@@ -176,8 +193,11 @@ class MergingPath {
   CameraTally &tally_;
   ImportanceMarks *marks_;
   const ImportanceMap &importance_;  // the render's map: its grid and importance rule for marks
+  PixelRadius &pixel_radius_;
+  size_t pixel_;
   CameraMis mis_;
   float radius_ = 0;     // r_a: fixed at the first rough vertex, used by every lookup (spec 3.5)
+  bool shrunk_ = false;  // r_a is below the schedule's radius (pixel_radius.hpp)
   uint64_t key_;         // the lookup roulette's draws: hashes of it and the vertex
   float q_ = 1;          // lookup probability at the current vertex (its merge density's factor)
   float neff_ = 0;       // effective photon count at the current lookup vertex (times window_.rho)

@@ -15,6 +15,7 @@ namespace nimbus::caustics {
 struct SolverStats {
   uint64_t photon_paths = 0, photons = 0, photon_bytes = 0, passes = 0, map_iterations = 0;
   uint64_t mis_clamped = 0;
+  uint64_t first_lookups = 0, shrunk_lookups = 0;  // first lookups, and those with a per-pixel radius
   uint64_t guided_passes = 0, proposals = 0, accepted = 0;
   uint64_t used_paths = 0;    // photon paths of finished maps that some lookup used
   double photon_seconds = 0;  // photon tracing and kd-tree builds
@@ -41,6 +42,12 @@ struct SolverStats {
     flux = r.paths > 0 ? flux / double(r.paths) : 0.0;
     flux_sum += flux, flux_sq += flux * flux;
     ++passes;
+  }
+
+  // [main-thread] One worker's camera-path counts (merging.hpp's CameraTally) of an iteration.
+  template <class Tally>
+  void camera_done(const Tally &t) {
+    mis_clamped += t.mis_clamped, first_lookups += t.first_lookups, shrunk_lookups += t.shrunk_lookups;
   }
 
   // [main-thread]
@@ -72,6 +79,8 @@ struct SolverStats {
     // The lookup roulette's final probabilities (lookup_roulette.hpp).
     progress->stat_add(h, "caustics_lookup_probability_first", f.lookup_first);
     progress->stat_add(h, "caustics_lookup_probability_later", f.lookup_later);
+    // Share of first lookups whose pixel's photon density shrank the radius (pixel_radius.hpp).
+    progress->stat_add(h, "caustics_pixel_radius_shrunk", ratio(shrunk_lookups, first_lookups));
     progress->stat_add(h, "caustics_bytes_per_photon",
                        photons > 0 ? double(photon_bytes) / double(photons) : f.photon_size);
   }

@@ -1,9 +1,11 @@
 // Longer statistical renders with nimbus.caustics (label `long`: CI's sanitizer pass leaves them out,
 // the shorter renders of render_test.cpp run the same code under it): photons from an environment map's hot
 // spot against a long nimbus.pt render, and convergence to nimbus.lt under a spot light, a sun, guided
-// photon emission and the adaptive emission map.
+// photon emission and the adaptive emission map; the focus of a point light kept sharp by the per-pixel
+// merge radius.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -98,6 +100,52 @@ lights:
   - { type: sun, direction: [2.0, 0, -1.0], irradiance: [3, 3, 3], angular_diameter: 6, group: sun }
 )",
                             {{"photon_emission", "adaptive-map"}});
+}
+
+// The focus of a point light behind a glass sphere (320 x 180, the caustic's core a few pixels wide): a
+// kernel of the schedule's radius spreads the focus onto its surroundings, a per-pixel error that the
+// region means above do not see (the light is only moved). With the radius per pixel (pixel_radius.hpp)
+// the kernel shrinks where the photons crowd. Measured per pixel over the focus (the brightest 0.5 % of
+// the light tracer's covered pixels): the squared relative bias, (mean of two solver renders - mean of
+// two light-tracer renders)^2 less both means' variances (from each pair's difference), divided by
+// (reference^2 + 0.01) as relMSE does, over the 111 focus pixels. Measured at 64 iterations: 0.063
+// (SE 0.024) with the schedule's radius alone, 0.0009 (SE 0.0006) with the radius per pixel. The bound
+// 0.015 lies 22 standard errors above the latter (the estimate's SE from its spread over the pixels,
+// printed) and 2 below the former.
+TEST(CausticsRender, FocusOfAPointLightIsNotBlurred) {
+  SceneRenderer r;
+  const std::string scene =
+      from_above("lights:\n  - { type: point, position: [-2.0, 0, 1.6], intensity: 12 }\n", 4);
+  const auto lt1 = r.render(scene, request("nimbus.lt", 256, 34)),
+             lt2 = r.render(scene, request("nimbus.lt", 256, 35));
+  const auto s1 = r.render(scene, request("nimbus.caustics", 64, 31)),
+             s2 = r.render(scene, request("nimbus.caustics", 64, 32));
+  EXPECT_GT(stat(s1, "caustics_pixel_radius_shrunk"), 0.0);
+  const auto lum = [](const ImageLayers &img) {
+    const std::vector<float> &d = img.layers.at("beauty").data;
+    std::vector<double> v(d.size() / 3);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = luminance(Rgb::load(&d[3 * i]));
+    return v;
+  };
+  const std::vector<double> a1 = lum(lt1), a2 = lum(lt2), b1 = lum(s1), b2 = lum(s2);
+  std::vector<double> covered;
+  for (size_t i = 0; i < a1.size(); ++i)
+    if (a1[i] > 0 && a2[i] > 0) covered.push_back(a1[i] + a2[i]);
+  std::sort(covered.begin(), covered.end());
+  const double threshold = covered[size_t(0.995 * double(covered.size()))];
+  double sum = 0, sum2 = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < a1.size(); ++i) {
+    if (!(a1[i] > 0 && a2[i] > 0 && a1[i] + a2[i] >= threshold)) continue;
+    const double ref = (a1[i] + a2[i]) / 2, test = (b1[i] + b2[i]) / 2;
+    const double var = ((a1[i] - a2[i]) * (a1[i] - a2[i]) + (b1[i] - b2[i]) * (b1[i] - b2[i])) / 4;
+    const double bias2 = ((test - ref) * (test - ref) - var) / (ref * ref + 0.01);
+    sum += bias2, sum2 += bias2 * bias2, ++n;
+  }
+  const double mean = sum / double(n), se = std::sqrt((sum2 / double(n) - mean * mean) / double(n - 1));
+  std::printf("focus (%zu pixels): squared relative bias %.4g (SE %.2g); shrunk first lookups %.4f\n", n,
+              mean, se, stat(s1, "caustics_pixel_radius_shrunk"));
+  EXPECT_LT(mean, 0.015);
 }
 
 }  // namespace

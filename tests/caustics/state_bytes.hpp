@@ -2,7 +2,9 @@
 // templates use, so tests can round-trip a state without a host.
 #pragma once
 
+#include <cstdint>
 #include <cstring>
+#include <span>
 #include <vector>
 
 namespace nimbus::caustics {
@@ -20,6 +22,20 @@ struct Bytes {
     if (data.size() - read < sizeof v) return false;
     std::memcpy(&v, data.data() + read, sizeof v);
     read += sizeof v;
+    return true;
+  }
+  // An array's length, then its elements, as sdk::StateWriter::put_array writes them.
+  template <class T>
+  void put_array(std::span<const T> a) {
+    put(uint64_t(a.size()));
+    for (const T &v : a) put(v);
+  }
+  template <class T>
+  bool get_array(std::vector<T> &a, uint64_t count) {
+    uint64_t n = 0;
+    if (!get(n) || n != count || n > (data.size() - read) / sizeof(T)) return false;
+    a.resize(size_t(n));
+    for (T &v : a) get(v);
     return true;
   }
 };

@@ -89,9 +89,11 @@ TEST(FrameSplit, PathTracerPartsMergeToTheWholeRenderBitForBit) {
 
 // The caustics solver's photon passes are numbered frame-wide (task K's pass j is the frame's K + 1 +
 // (j - 1) N), so the tasks trace different photons and shrink their radii as one render does. Its merge
-// is then as far from an independent render (another seed) as a whole render is: the relMSE ratio of
-// the two comparisons, over 5184 pixels, has a spread of a few percent, and 1.3 is far outside it for a
-// correct merge while a merge of correlated parts (every task tracing the same photons) exceeds it.
+// is then as far from an independent render (another seed) as a whole render is. A few fireflies carry a
+// third of either comparison's relMSE (10 of 5184 pixels), so each pixel's term is capped at 1 (a
+// relative error of 100 %); the ratio of the two capped figures then has a spread of a few percent
+// (measured 0.94), and 1.3 is far outside it for a correct merge, while a merge of correlated parts
+// (every task tracing the same photons) lies towards one part alone, 2.1x the whole's.
 TEST(FrameSplit, CausticsSolverMergeIsAsCloseToAnIndependentRenderAsAWholeRender) {
   TestDir dir;
   const std::string scene = split_scene();
@@ -107,8 +109,8 @@ TEST(FrameSplit, CausticsSolverMergeIsAsCloseToAnIndependentRenderAsAWholeRender
     EXPECT_TRUE(merged->layers.count(layer)) << layer;
   EXPECT_EQ(meta_number(*merged, "nimbus:iterations"), 32.0);
   const std::vector<float> &ref = other->layers.at("beauty").data;
-  const double e_whole = testing::rel_mse(whole->layers.at("beauty").data, ref);
-  const double e_merged = testing::rel_mse(merged->layers.at("beauty").data, ref);
+  const double e_whole = testing::rel_mse(whole->layers.at("beauty").data, ref, 1.0);
+  const double e_merged = testing::rel_mse(merged->layers.at("beauty").data, ref, 1.0);
   EXPECT_LT(e_merged, 1.3 * e_whole) << "relMSE against seed 2: merged " << e_merged << ", whole " << e_whole;
   EXPECT_GT(e_merged, e_whole / 1.3) << "merged " << e_merged << ", whole " << e_whole;
   // The caustics element carries photon light: the parts' photons really were merged.

@@ -4,9 +4,9 @@
 One frame of a caustic scene rendered on a Slurm cluster brought up on localhost: MUNGE, slurmctld and
 slurmd with a minimal slurm.conf written here (one node, 2 CPUs, no cgroups, no accounting), the frame
 submitted by packaging/slurm/nimbus-slurm-submit as a 4-task job array plus the dependent merge job. The
-merged image is then compared with single-machine renders of the same 32 iterations: its relMSE against
-the same-seed render and against another seed is at the level of two independent renders (the ratios
-are printed), its mean is within 5 standard errors of the other seed's (the standard error from the
+merged image is then compared with single-machine renders of the same 32 iterations: its error (MAPE)
+against the same-seed render and against another seed is at the level of two independent renders (the
+ratios are printed), its mean is within 5 standard errors of the other seed's (the standard error from the
 spread of 8 more single renders' means), and the caustics element and LightMix layers are there. If the
 daemons cannot start, the test says why and fails.
 """
@@ -202,19 +202,23 @@ def main(build, source):
         run([nimbus, "render", scene, "-q", "--iterations", str(ITERATIONS), "--threads", "2", "--seed", "2",
              "-o", other])
 
-        def relmse(test, ref, element="beauty"):
-            return json.loads(run([nimbus, "compare", test, ref, "--json", "--element", element]))["relmse_luminance"]
+        # The levels are compared by MAPE: a few pixels at the caustic's focus carry a third of a render's
+        # relMSE, which makes ratios of relMSE swing by more than the bounds below between seeds.
+        def error(test, ref, element="beauty", metric="mape"):
+            return json.loads(run([nimbus, "compare", test, ref, "--json", "--element", element]))[metric]
 
-        e_merged_single, e_other_single = relmse(merged, single), relmse(other, single)
-        e_merged_other, e_single_other = relmse(merged, other), relmse(single, other)
-        print(f"relMSE: merged/single {e_merged_single:.5f}, other seed/single {e_other_single:.5f}; "
-              f"merged/other seed {e_merged_other:.5f}, single/other seed {e_single_other:.5f}")
+        e_merged_single, e_other_single = error(merged, single), error(other, single)
+        e_merged_other, e_single_other = error(merged, other), error(single, other)
+        print(f"MAPE: merged/single {e_merged_single:.5f}, other seed/single {e_other_single:.5f}; "
+              f"merged/other seed {e_merged_other:.5f}, single/other seed {e_single_other:.5f} (relMSE "
+              f"{error(merged, other, metric='relmse_luminance'):.5f} and "
+              f"{error(single, other, metric='relmse_luminance'):.5f})")
         if not e_merged_single < 1.3 * e_other_single:
             raise Failure("the merged image is farther from the single render than an independent render is")
         if not e_single_other / 1.3 < e_merged_other < 1.3 * e_single_other:
             raise Failure("the merged image's error is not at the level of a single render's")
         for element in ("caustics", "lightmix.key", "lightmix.fill"):
-            relmse(merged, single, element)  # fails when the layer is missing from either
+            error(merged, single, element)  # fails when the layer is missing from either
         # The spread of a single render's mean, from independent renders of the same length.
         means = []
         for seed in range(3, 3 + SPREAD_RENDERS):

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -85,12 +87,14 @@ class SceneRenderer {
 };
 
 // relMSE of `test` against `ref` (interleaved RGB), on luminance: mean (t - r)^2 / (r^2 + 0.01).
-inline double rel_mse(const std::vector<float> &test, const std::vector<float> &ref) {
+// cap: the most one pixel's term may add (a firefly's weight), unbounded unless given.
+inline double rel_mse(const std::vector<float> &test, const std::vector<float> &ref,
+                      double cap = std::numeric_limits<double>::infinity()) {
   double sum = 0;
   const size_t n = ref.size() / 3;
   for (size_t i = 0; i < n; ++i) {
     const double t = luminance(Rgb::load(&test[3 * i])), r = luminance(Rgb::load(&ref[3 * i]));
-    sum += (t - r) * (t - r) / (r * r + 0.01);
+    sum += std::min(cap, (t - r) * (t - r) / (r * r + 0.01));
   }
   return n ? sum / double(n) : 0;
 }
