@@ -350,7 +350,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     merge_.light_group = &light_groups(), merge_.ids = ids(), merge_.max_depth = max_depth();
     merge_.map_paths = result.paths, merge_.importance = &pass_importance_;
     merge_.importance_ratio = result.importance_ratio, merge_.path_use = &pass_.path_use();
-    merge_.scene_radius = scene_radius_;
+    merge_.scene_radius = scene_radius_, merge_.density_weight = density_weights(emitters_);
     photon_work_ = result.traced > 0 ? double(result.work) / double(result.traced) : 0.0;
     return NIMBUS_OK;
   }

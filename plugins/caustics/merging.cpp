@@ -29,6 +29,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
                          float neff, const TimeWindow &window, float lambda, CausticsRecord &rec) {
   uint32_t evaluated = 0;
+  float density_count = 0;
   const float r2 = r * r;
   // The photons' power is relative to a uniform path's (guided_pass.cpp), so 1 / N_u normalises it.
   const float inv_paths = 1.0f / (float(mc.map_paths) * q);
@@ -64,6 +65,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     else
       mc.bsdf->eval(mc.host, &ix, wo_arr, wp_arr, NIMBUS_MODE_RADIANCE, f, &pdf_fwd, &pdf_rev);
     ++evaluated;
+    density_count += ph.light() < mc.density_weight.size() ? mc.density_weight[ph.light()] : 1.0f;
     const Rgb fr = Rgb::load(f);
     if (is_black(fr)) return;
     const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
@@ -75,10 +77,10 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     if (mc.ids.lightmix) rec.add_merge(beta * c * inv_paths, (*mc.light_group)[ph.light()], mc.ids);
     sum += c;
   });
-  if (is_black(sum)) return {leaves, evaluated, 0.0f};
+  if (is_black(sum)) return {leaves, evaluated, 0.0f, density_count};
   const Rgb light = beta * sum * inv_paths;
   if (!mc.ids.lightmix) rec.add_merge(light, 0, mc.ids);
-  return {leaves, evaluated, luminance(light)};
+  return {leaves, evaluated, luminance(light), density_count};
 }
 
 }  // namespace nimbus::caustics

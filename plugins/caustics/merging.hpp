@@ -40,10 +40,11 @@ struct MergeContext {
   // the importance map the map's pass used (null, and ratio 0, without guiding).
   const ImportanceMap *importance = nullptr;
   double importance_ratio = 0;
-  PathUse *path_use = nullptr;  // the map's paths: lookups flag those whose photons contributed
-  float radius_per_length = 0;  // merge radius per unit path length at the map's pass
-  PhotonClock clock;            // photon times (spec 7.1): untimed unless geometry or lights move
-  float time_half_width = 0;    // h of the map's pass
+  PathUse *path_use = nullptr;        // the map's paths: lookups flag those whose photons contributed
+  std::vector<float> density_weight;  // per light, what its photons count in a pixel's density (below)
+  float radius_per_length = 0;        // merge radius per unit path length at the map's pass
+  PhotonClock clock;                  // photon times (spec 7.1): untimed unless geometry or lights move
+  float time_half_width = 0;          // h of the map's pass
   // Dispersion (spec 7.2): the host's spectral service when the scene disperses light (else null), and
   // the half width (nm) of the wavelength window of the map's pass.
   const nimbus_host_spectral_v1_t *spectral = nullptr;
@@ -53,11 +54,32 @@ struct MergeContext {
   std::array<float, kLookupClasses> lookup_probability{1.0f, 1.0f};
 };
 
+// The most a photon of a rarely chosen light counts in a pixel's photon density.
+inline constexpr float kMaxDensityWeight = 8;
+
+// Per light, what one of its photons counts in a pixel's photon density (pixel_radius.hpp): the most
+// likely light's selection probability over its own (at most kMaxDensityWeight). The density is then
+// that of the light's own photon paths as if it had the most likely light's share: a focus shrinks the
+// kernel alike whichever light forms it, so two mirror-symmetric LightMix groups with unequal photon
+// shares keep mirror-symmetric radii (and layers).
+inline std::vector<float> density_weights(const EmitterSet &emitters) {
+  std::vector<float> w(emitters.size(), 0.0f);
+  float most = 0;
+  for (size_t l = 0; l < w.size(); ++l) most = std::max(most, emitters.selection_pmf(uint32_t(l)));
+  for (size_t l = 0; l < w.size(); ++l) {
+    const float pmf = emitters.selection_pmf(uint32_t(l));
+    w[l] = pmf > 0 ? std::min(kMaxDensityWeight, most / pmf) : 0.0f;
+  }
+  return w;
+}
+
 // What one lookup did: for the budget's work count, kd-tree leaves scanned and photons evaluated; for
-// the lookup roulette, the luminance of the light it added.
+// the lookup roulette, the luminance of the light it added; for the pixel's density, the photons it
+// evaluated, each counted by its light's density weight.
 struct LookupCost {
   uint32_t leaves = 0, evaluated = 0;
   float light = 0;
+  float density_count = 0;
   uint64_t work() const { return kLeafWork * leaves + kPhotonWork * evaluated; }
 };
 
@@ -158,7 +180,7 @@ class MergingPath {
       tally_.lookup_work[cls] += c.work();
       rec.lookup_moment[cls] += q_ * c.light * c.light;
       if (cls == kFirstLookup) {
-        pixel_radius_.found(pixel_, c.evaluated, radius_, neff_);
+        pixel_radius_.found(pixel_, c.density_count, radius_, neff_);
         ++tally_.first_lookups, tally_.shrunk_lookups += shrunk_ ? 1 : 0;
       }
       // A lookup that found light marks where the camera needs photons (spec 6.3).

@@ -41,9 +41,10 @@ class PixelRadius {
     return r * std::max(kMinScale, float(std::sqrt(kTargetPhotons / expected)));
   }
 
-  // [render-thread] A first lookup of pixel i found `found` photons within radius r, with `neff`
-  // effective photon paths (each pixel belongs to one tile, so no two threads meet).
-  void found(size_t i, uint32_t found, float r, float neff) {
+  // [render-thread] A first lookup of pixel i found `found` photons within radius r (each counted by its
+  // light's density weight, merging.hpp), with `neff` effective photon paths (each pixel belongs to one
+  // tile, so no two threads meet).
+  void found(size_t i, double found, float r, float neff) {
     if (i >= sums_.size()) return;
     sums_[i].photons += found;
     sums_[i].area += M_PI * double(r) * r * neff;

@@ -9,6 +9,7 @@
 
 #include "chi_square.hpp"
 #include "emitters.hpp"
+#include "merging.hpp"
 
 namespace nimbus::caustics {
 namespace {
@@ -310,6 +311,25 @@ TEST(CausticsEmitters, ClustersEncloseEveryObject) {
           inside || length(o.sphere.center - c.sphere.center) + o.sphere.radius <= c.sphere.radius * 1.0001f;
     EXPECT_TRUE(inside);
   }
+}
+
+// A photon counts in a pixel's density (pixel_radius.hpp) as the most likely light's selection
+// probability over its light's: a light chosen a third as often counts three times, so a focus shrinks the
+// kernel alike whichever light forms it; at most kMaxDensityWeight; a light that emits no photon, 0.
+TEST(CausticsEmitters, DensityWeightsAreTheMostLikelyShareOverTheLightsOwn) {
+  EmitterSet set;
+  set.build(three_lights(), Vec3f(0, 0, 0), 10, nullptr, &kStubLights, two_targets());
+  set.set_selection({0.6, 0.3, 0.1});
+  std::vector<float> w = density_weights(set);
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_NEAR(w[0], 1.0f, 1e-6f);
+  EXPECT_NEAR(w[1], 2.0f, 1e-5f);
+  EXPECT_NEAR(w[2], 6.0f, 1e-5f);
+  set.set_selection({0.0, 0.999, 0.001});
+  w = density_weights(set);
+  EXPECT_EQ(w[0], 0.0f);
+  EXPECT_NEAR(w[1], 1.0f, 1e-6f);
+  EXPECT_EQ(w[2], kMaxDensityWeight);
 }
 
 }  // namespace
