@@ -7,7 +7,8 @@
 //   point, spot, area: a mixture of the light's own emission (the host's sample_emission; a defensive
 //          share of at least kOwnShare) and cones of uniform directions towards each target sphere,
 //          weighted by the solid angle each target covers as seen from the light (a spot drops targets
-//          outside its cone; an area light aims from each emission point, with weights fixed per light);
+//          outside its cone; an area light aims from each emission point, with weights fixed per light).
+//          Its photons carry the power it sends towards the targets, which light selection weighs;
 //   sun:   origins on a disk perpendicular to the direction, around the sphere of all targets
 //          (P_pos = 1 / (pi R_e^2)), or on the smaller rectangle covering the projection of their box,
 //          mixed with kOwnShare of origins on the scene's disk; the host's cone of directions.
@@ -33,68 +34,11 @@
 
 #include "emission_cone.hpp"
 #include "emission_map.hpp"
+#include "emitter.hpp"
 #include "environment_emission.hpp"
 #include "sharp_targets.hpp"
 
 namespace nimbus::caustics {
-
-// The share of a light's photons emitted as the light itself emits (finite lights), or from the scene's
-// whole disk (the sun): a defence against bounds that miss a caustic-forming surface.
-inline constexpr float kOwnShare = 0.1f;
-
-enum class EmitterKind : uint8_t { Area, Point, Spot, Sun, Environment };
-
-// One cone of a finite light's projection map.
-struct Aim {
-  uint32_t target = 0;  // index into the targets
-  float share = 0;      // probability of this component
-  EmissionCone cone;    // point, spot: from the light's position (area lights: from each emission point)
-};
-
-struct Emitter {
-  EmitterKind kind = EmitterKind::Point;
-  uint32_t flags = 0, group = 0;
-  float power = 0;
-  Vec3f axis;               // spot: the cone axis; sun: the direction photons travel
-  float cos_theta_e = -1;   // spot / sun cone
-  Vec3f position;           // point, spot; area: the centre of its bounds
-  Vec3f lo, hi;             // world bounds (finite lights)
-  float own = 1;            // share of the light's own emission (finite) or of the scene's disk (sun)
-  uint32_t first_slot = 0;  // its first emission-map slot: one per aim (finite), one for the targets' disk
-  std::vector<Aim> aims;    // finite lights: the cones towards the targets
-  // sun: 1 / the area of the targets' disk or rectangle; the rectangle [s0, s1] x [t0, t1] around the
-  // targets' centre lies in the plane perpendicular to each direction w, in the basis of w whose s axis
-  // follows rect_s; unused (the disk) where the disk is smaller.
-  float pdf_pos = 0;
-  bool use_rect = false;
-  Vec3f rect_s;
-  float rect[4] = {0, 0, 0, 0};  // s0, s1, t0, t1
-  bool delta_position() const { return flags & NIMBUS_LIGHT_DELTA_POSITION; }
-  bool moves() const { return flags & NIMBUS_LIGHT_MOVES; }  // a point or spot light (SDK 1.7)
-  bool delta_direction() const { return flags & NIMBUS_LIGHT_DELTA_DIRECTION; }
-  bool infinite() const { return flags & NIMBUS_LIGHT_INFINITE; }
-  // BSDF sampling can hit it (a PT hit technique exists).
-  bool hittable() const { return kind == EmitterKind::Area || (infinite() && !delta_direction()); }
-};
-
-inline Emitter make_emitter(const nimbus_light_info_t &info) {
-  Emitter e;
-  e.flags = info.flags;
-  e.group = info.group;
-  e.power = std::isfinite(info.power) && info.power > 0 ? info.power : 0.0f;
-  e.axis = Vec3f::load(info.axis);
-  e.cos_theta_e = info.cos_theta_e;
-  e.lo = Vec3f::load(info.bounds_min), e.hi = Vec3f::load(info.bounds_max);
-  e.position = (e.lo + e.hi) * 0.5f;
-  const bool has_axis = !is_black(e.axis);
-  if (info.flags & NIMBUS_LIGHT_AREA)
-    e.kind = EmitterKind::Area;
-  else if (info.flags & NIMBUS_LIGHT_INFINITE)
-    e.kind = has_axis && info.cos_theta_o >= 1 ? EmitterKind::Sun : EmitterKind::Environment;
-  else
-    e.kind = has_axis && info.cos_theta_o >= 1 ? EmitterKind::Spot : EmitterKind::Point;
-  return e;
-}
 
 // The photon-emission side of the lights: the selection table, the projection maps, and the product lp
 // of mis.hpp for a given emitter point and direction.
@@ -124,10 +68,10 @@ class EmitterSet {
         aim_sun(e);
       else
         aim_finite(e);
-      // A light that cannot aim at any target (a spot turned away from them) is kept at the defensive
-      // share: its photons can only reach sharp geometry by a bounce, which path tracing samples.
-      const bool aims = e.infinite() ? e.own < 1 : !e.aims.empty();
-      w[i] = double(e.power) * (aims || targets_.empty() ? 1.0 : double(kOwnShare));
+      // A finite light's photons bring caustics only by the power it sends towards sharp geometry (a
+      // spot turned away from every target sends none: path tracing samples its bounces).
+      const bool aims = e.own < 1 || targets_.empty();
+      w[i] = double(e.power) * (!e.infinite() ? double(e.toward) : aims ? 1.0 : double(kOwnShare));
       e.first_slot = slots_;
       slots_ += e.infinite() ? (e.own < 1 ? 1 : 0) : uint32_t(e.aims.size());
     }
@@ -136,8 +80,8 @@ class EmitterSet {
   }
 
   // The flux each light's photons carry (light selection reports it to the sampler,
-  // emission_selection.hpp): the power of what it emits towards targets, or the defensive share of it for
-  // a light that cannot aim at any.
+  // emission_selection.hpp): the power a finite light emits towards the targets; an infinite light's
+  // through the targets' disk, or the defensive share of it when the disk is the scene's.
   const std::vector<double> &photon_powers() const { return rule_; }
   // The selection probabilities of the next photon map (both sides read them until the one after).
   void set_selection(const std::vector<double> &p) { table_ = AliasTable(p); }
@@ -313,10 +257,8 @@ class EmitterSet {
   // can reach, weighted by solid angle; a target around the light counts as the whole sphere of
   // directions and adds its weight to the light's own emission.
   void aim_finite(Emitter &e) const {
-    e.own = 1, e.aims.clear();
+    e.own = 1, e.toward = 1, e.aims.clear();
     if (targets_.empty()) return;
-    const float spot_angle =
-        e.kind == EmitterKind::Spot ? std::acos(std::clamp(e.cos_theta_e, -1.0f, 1.0f)) : kPi;
     double inside = 0, total = 0;
     for (uint32_t t = 0; t < targets_.clusters.size(); ++t) {
       const Sphere &s = targets_.clusters[t].sphere;
@@ -325,17 +267,43 @@ class EmitterSet {
         inside += 4 * kPi, total += 4 * kPi;
         continue;
       }
-      if (e.kind == EmitterKind::Spot) {
-        const float apart = std::acos(std::clamp(dot(cone.axis, e.axis), -1.0f, 1.0f));
-        if (apart > spot_angle + std::asin(std::sqrt(cone.sin2))) continue;  // outside the spot's cone
-      }
+      if (!in_spot(e, cone)) continue;
       const double solid_angle = 2 * kPi * double(cone.one_minus_cos);
       e.aims.push_back({t, float(solid_angle), cone});
       total += solid_angle;
     }
+    e.toward = toward_objects(e);
     if (e.aims.empty()) return;
     e.own = float(kOwnShare + (1 - kOwnShare) * inside / total);
     for (Aim &a : e.aims) a.share = float((1 - kOwnShare) * double(a.share) / total);
+  }
+  // Whether a spot's cone can meet the cone towards a target (always, for other lights).
+  static bool in_spot(const Emitter &e, const EmissionCone &cone) {
+    if (e.kind != EmitterKind::Spot) return true;
+    const float spot_angle = std::acos(std::clamp(e.cos_theta_e, -1.0f, 1.0f));
+    const float apart = std::acos(std::clamp(dot(cone.axis, e.axis), -1.0f, 1.0f));
+    return apart <= spot_angle + std::asin(std::sqrt(cone.sin2));
+  }
+  // The share of a finite light's power that leaves towards the sharp objects themselves (the clusters'
+  // spheres when there are too many to list), taking its emission as uniform over the solid angle it
+  // emits into (an area light's hemisphere): the flux its photons can bring to caustics. A light inside
+  // a cluster's sphere emits at its own objects, not at the whole sphere.
+  float toward_objects(const Emitter &e) const {
+    const double emitted = e.kind == EmitterKind::Spot    ? 2 * kPi * double(1 - e.cos_theta_e)
+                           : e.kind == EmitterKind::Point ? 4 * kPi
+                                                          : 2 * kPi;
+    double toward = 0;
+    const auto add = [&](const Sphere &s) {
+      const EmissionCone cone = EmissionCone::towards(e.position, s.center, s.radius);
+      if (!cone.active())
+        toward += emitted;
+      else if (in_spot(e, cone))
+        toward += std::min(2 * kPi * double(cone.one_minus_cos), emitted);
+    };
+    if (targets_.objects.empty())
+      for (const Target &c : targets_.clusters) add(c.sphere);
+    for (const Sphere &s : targets_.objects) add(s);
+    return float(std::min(1.0, toward / emitted));
   }
 
   // The sun's footprint on the targets: their disk, or the rectangle around their box when smaller.

@@ -18,6 +18,9 @@ namespace nimbus::caustics {
 // Clusters per scene: each finite light's emission is a mixture over them (spec 6.2), evaluated at every
 // emitter hit and NEE sample of a camera path while a photon map is active.
 inline constexpr size_t kMaxTargets = 8;
+// Sharp objects whose own spheres are kept (for each light's share of power towards them); beyond it the
+// clusters stand in.
+inline constexpr size_t kMaxObjectSpheres = 4096;
 
 struct Target {
   Sphere sphere;
@@ -75,6 +78,7 @@ inline void cluster(std::vector<Target> &objects, size_t k, std::vector<Target> 
 struct SharpTargets {
   std::vector<Target> clusters;  // at most kMaxTargets
   Target all;                    // around every cluster (the emission disk of infinite lights)
+  std::vector<Sphere> objects;   // each object's sphere, or none beyond kMaxObjectSpheres objects
   bool empty() const { return clusters.empty(); }
 };
 
@@ -91,6 +95,8 @@ inline SharpTargets query_sharp_targets(const nimbus_host_t *h, const nimbus_hos
     if (b.radius >= 0 && std::isfinite(b.radius))
       objects.push_back({{Vec3f::load(b.center), b.radius}, Vec3f::load(b.lo), Vec3f::load(b.hi)});
   if (objects.empty()) return t;
+  if (objects.size() <= kMaxObjectSpheres)
+    for (const Target &o : objects) t.objects.push_back(o.sphere);
   cluster(objects, kMaxTargets, t.clusters);
   t.all = enclose(t.clusters);
   return t;
