@@ -4,7 +4,8 @@ compares every image with a reference, and writes a CSV and a log-log plot of re
 
     bench/error_vs_time.py scenes/caustics/sphere-area.yaml --integrators pt,caustics \
         --times 5,10,20,40,80 [--reference REF.exr] [--reference-integrator pt --reference-time 1200] \
-        [--covered-only] [--crop X0,Y0,X1,Y1] [--brighter-than F] [--seeds 3] [--out docs/error-vs-time] \
+        [--covered-only] [--crop X0,Y0,X1,Y1] [--brighter-than F] [--exclude-render MASK.yaml] \
+        [--seeds 3] [--out docs/error-vs-time] \
         [--nimbus build/bin/nimbus]
 
 Without --reference, the reference is rendered first, as two independent halves (seeds 1000 and 1001),
@@ -21,7 +22,10 @@ renders every pixel whose camera ray first meets a non-specular surface and leav
 in mirrors black, so it is an independent reference for those pixels in scenes that path tracing cannot
 converge (delta lights behind specular surfaces). It prints, per integrator and time, the median relMSE
 over seeds, efficiency = 1 / (relMSE x seconds), and the ratio of each integrator's efficiency to the path
-tracer's measured in the same run. An entry of --integrators may name another build as
+tracer's measured in the same run. --exclude-render MASK.yaml leaves out the pixels that a 64-iteration
+nimbus.pt render of MASK.yaml shows non-zero, and those within 2 of them (bench/masks/ holds such scenes:
+the pixels a moving glass object covers during the shutter, whose light no independent integrator
+renders). An entry of --integrators may name another build as
 LABEL=INTEGRATOR@NIMBUS (e.g. old=caustics@/path/to/old/build/bin/nimbus), to compare two versions. Uses Debian's python3 and matplotlib; not part of
 CI (machines are shared and noisy: read the ratios, not the absolute figures).
 """
@@ -53,19 +57,29 @@ def relmse(test, ref, mask, scale=None):
     return float(((test[keep] - ref[keep]) ** 2 / (scale[keep] ** 2 + 0.01)).mean())
 
 
-def region_mask(ref, covered_only, crop, brighter_than=None):
-    """The pixels compared: all, or those --covered-only and --crop keep; with brighter_than F, only
-    those of them whose reference luminance exceeds F times the region's median (a caustic's own pixels)."""
+def within_2(pixels, outside=False):
+    """Whether every pixel within 2 (a 5 x 5 square) of each pixel is set in `pixels` (pixels outside the
+    image: `outside`)."""
+    out = np.ones(pixels.shape, dtype=bool)
+    padded = np.pad(pixels, 2, constant_values=outside)
+    h, w = pixels.shape
+    for dy in range(5):
+        for dx in range(5):
+            out &= padded[dy:dy + h, dx:dx + w]
+    return out
+
+
+def region_mask(ref, covered_only, crop, brighter_than=None, excluded=None):
+    """The pixels compared: all, or those --covered-only and --crop keep, less `excluded` (rows x
+    columns, True: left out, with the pixels within 2 of them); with brighter_than F, only those of them
+    whose reference luminance exceeds F times the region's median (a caustic's own pixels)."""
     mask = np.ones(ref.shape[:2], dtype=bool)
     if covered_only:
         # A pixel counts when its whole neighbourhood is covered: a pixel on a glass or mirror silhouette
         # is partly light the light tracer cannot render, so its reference is too dark there.
-        covered = (ref > 0).any(axis=-1)
-        padded = np.pad(covered, 2, constant_values=False)
-        h, w = covered.shape
-        for dy in range(5):
-            for dx in range(5):
-                mask &= padded[dy:dy + h, dx:dx + w]
+        mask &= within_2((ref > 0).any(axis=-1))
+    if excluded is not None:
+        mask &= within_2(~excluded, outside=True)
     if crop:
         x0, y0, x1, y1 = crop
         box = np.zeros_like(mask)
@@ -91,6 +105,8 @@ def main():
     ap.add_argument("--crop", help="X0,Y0,X1,Y1: only this pixel rectangle")
     ap.add_argument("--brighter-than", type=float,
                     help="F: only the pixels whose reference luminance exceeds F x the region's median")
+    ap.add_argument("--exclude-render", metavar="MASK.yaml",
+                    help="leave out the pixels a nimbus.pt render of MASK.yaml shows non-zero")
     ap.add_argument("--out", default="docs/error-vs-time")
     ap.add_argument("--nimbus", default="build/bin/nimbus")
     args = ap.parse_args()
@@ -124,7 +140,13 @@ def main():
                             f"commit: {commit}; used by error-vs-time.csv\n")
         halves = [read_rgb(r) for r in refs]
         ref_image = sum(halves) / len(halves)
-        mask = region_mask(ref_image, args.covered_only, crop, args.brighter_than)
+        excluded = None
+        if args.exclude_render:
+            mask_exr = os.path.join(args.out, f"{name}-excluded.exr")
+            run([args.nimbus, "render", args.exclude_render, "-o", mask_exr, "--integrator", "pt",
+                 "--iterations", "64", "--seed", "1", "-q"])
+            excluded = (read_rgb(mask_exr) > 0).any(axis=-1)
+        mask = region_mask(ref_image, args.covered_only, crop, args.brighter_than, excluded)
         ref_var = 0.0
         if len(halves) == 2:
             ref_var = relmse(halves[0], halves[1], mask, scale=ref_image) / 4
