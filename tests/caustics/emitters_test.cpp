@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include <nimbus/cpp/emitter_selection.hpp>
+
 #include "chi_square.hpp"
 #include "emitters.hpp"
 #include "merging.hpp"
@@ -383,6 +385,35 @@ TEST(CausticsEmitters, PhotonPowerIsThePowerSentTowardsTheTargets) {
   EXPECT_TRUE(set[0].aims.empty()) << "the lamp is inside the cluster's sphere";
   const float balls_share = 2 * solid_angle(lamp[0].position, pair.objects[0]) / (4 * kPi);
   EXPECT_NEAR(set.photon_powers()[0], 2 * balls_share, 1e-4 * 2 * balls_share);
+}
+
+// The prism scene's lights (scenes/caustics/prism.yaml): a 40 W/sr spot whose narrow cone lies inside the
+// glass's sphere, and a 2.5 W/sr fill lamp nearer the camera that sees the glass small. Selected by the
+// kit's prior (photon power over squared camera distance), the spot must keep a fair share of the photon
+// paths: weighed by its whole power, the fill took 99.9 % and the rainbow was a few fireflies.
+TEST(CausticsEmitters, KeySpotOnGlassIsNotStarvedByABrightFillLamp) {
+  SharpTargets prism;
+  prism.objects = {{Vec3f(0, 0, 0.85f), 0.33f}};
+  std::vector<Target> objects = {{prism.objects[0], Vec3f(-0.1f, -0.3f, 0.8f), Vec3f(0.1f, 0.3f, 0.97f)}};
+  cluster(objects, kMaxTargets, prism.clusters);
+  prism.all = enclose(prism.clusters);
+  const float half_angle = 3 * kPi / 180;
+  std::vector<Emitter> lights(2);
+  lights[0].kind = EmitterKind::Spot, lights[0].flags = NIMBUS_LIGHT_DELTA_POSITION;
+  lights[0].position = Vec3f(-0.907f, 0, 0.371f), lights[0].axis = normalize(Vec3f(0.857f, 0, 0.515f));
+  lights[0].cos_theta_e = std::cos(half_angle), lights[0].power = 40 * 2 * kPi * (1 - std::cos(half_angle));
+  lights[1].kind = EmitterKind::Point, lights[1].flags = NIMBUS_LIGHT_DELTA_POSITION;
+  lights[1].position = Vec3f(1, -2, 2.5f), lights[1].power = 2.5f * 4 * kPi;
+  EmitterSet set;
+  set.build(lights, Vec3f(0, 0, 1), 6, nullptr, &kStubLights, prism);
+  const Vec3f camera(0.7f, -2.3f, 1.5f);
+  std::vector<sdk::EmitterSelection::Light> in(2);
+  for (int l = 0; l < 2; ++l)
+    in[l] = {set.photon_powers()[l], false, double(length_squared(lights[l].position - camera)), 0};
+  const std::vector<double> p = sdk::EmitterSelection::probabilities(in, nullptr, nullptr, false);
+  EXPECT_NEAR(set.photon_powers()[0], lights[0].power, 1e-6 * lights[0].power)
+      << "all of it enters the glass";
+  EXPECT_GT(p[0], 0.1) << "spot's share of the photon paths (weighed by whole power: ~0.001)";
 }
 
 }  // namespace
