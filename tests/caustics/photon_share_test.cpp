@@ -71,8 +71,9 @@ TEST(CausticsPhotonShare, PhotonPowerIsThePowerSentTowardsTheTargets) {
 
 // The prism scene's lights (scenes/caustics/prism.yaml): a 40 W/sr spot whose narrow cone lies inside the
 // glass's sphere, and a 2.5 W/sr fill lamp nearer the camera that sees the glass small. Selected by the
-// kit's prior (photon power over squared camera distance), the spot must keep a fair share of the photon
-// paths: weighed by its whole power, the fill took 99.9 % and the rainbow was a few fireflies.
+// kit's rule (photon power over squared camera distance, the defensive share by whole power), the spot
+// must keep a fair share of the photon paths: weighed by its whole power, the fill took 99.9 % and the
+// rainbow was a few fireflies.
 TEST(CausticsPhotonShare, KeySpotOnGlassIsNotStarvedByABrightFillLamp) {
   SharpTargets prism;
   prism.objects = {{Vec3f(0, 0, 0.85f), 0.33f}};
@@ -91,11 +92,12 @@ TEST(CausticsPhotonShare, KeySpotOnGlassIsNotStarvedByABrightFillLamp) {
   const Vec3f camera(0.7f, -2.3f, 1.5f);
   std::vector<sdk::EmitterSelection::Light> in(2);
   for (int l = 0; l < 2; ++l)
-    in[l] = {set.photon_powers()[l], false, double(length_squared(lights[l].position - camera)), 0};
+    in[l] = {set.photon_powers()[l], false, double(length_squared(lights[l].position - camera)), 0,
+             lights[l].power};
   const std::vector<double> p = sdk::EmitterSelection::probabilities(in, nullptr, nullptr, false);
   EXPECT_NEAR(set.photon_powers()[0], lights[0].power, 1e-6 * lights[0].power)
       << "all of it enters the glass";
-  EXPECT_GT(p[0], 0.1) << "spot's share of the photon paths (weighed by whole power: ~0.001)";
+  EXPECT_GT(p[0], 0.1) << "spot's share of the photon paths (all of it weighed by whole power: ~0.001)";
 }
 
 }  // namespace

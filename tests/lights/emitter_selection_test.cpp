@@ -52,6 +52,24 @@ TEST(EmitterSelection, AdaptationShrinksCountsAndKeepsADefensiveShare) {
       0.25, 1e-12);
 }
 
+// The defensive share weighs each finite light's whole power where the integrator's photon power counts
+// less of it (a lamp that sees the sharp objects small): P = 0.8 P0 (s ...) + 0.2 D, D the prior by whole
+// power; a light without photon power gets nothing, whatever it emits.
+TEST(EmitterSelection, DefensiveShareFollowsTheWholePower) {
+  // photon power 1 and 1e-3 (whole 1 and 10) at equal distance, and a light whose photons reach nothing.
+  const std::vector<Light> lights = {{1, false, 1, 0, 1}, {1e-3, false, 1, 0, 10}, {0, false, 1, 0, 50}};
+  const std::vector<double> p = sdk::EmitterSelection::probabilities(lights, nullptr, nullptr, false);
+  const double p0[2] = {1 / 1.001, 1e-3 / 1.001}, d[2] = {1.0 / 11, 10.0 / 11};
+  EXPECT_NEAR(p[0], 0.8 * p0[0] + 0.2 * d[0], 1e-12);
+  EXPECT_NEAR(p[1], 0.8 * p0[1] + 0.2 * d[1], 1e-12);
+  EXPECT_EQ(p[2], 0.0);
+  EXPECT_NEAR(sum(p), 1.0, 1e-12);
+  // With counts: the adapted 80 % follows the photon power, the defensive 20 % the whole power.
+  const uint64_t n[3] = {1000, 1000, 0}, c[3] = {500, 500, 0};
+  const std::vector<double> q = sdk::EmitterSelection::probabilities(lights, n, c, false);
+  EXPECT_NEAR(q[1], 0.8 * p0[1] + 0.2 * d[1], 1e-12);  // equal usefulness: the prior's split
+}
+
 TEST(EmitterSelection, LightMixGivesEveryGroupHalfItsFairShare) {
   // Group 0 holds a light 10^6 times brighter than group 1's.
   const std::vector<double> p =

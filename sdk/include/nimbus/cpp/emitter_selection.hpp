@@ -5,10 +5,13 @@
 // eps = max(its radius, 1e-3 R_scene)): lights near the camera light what it sees. The prior P0 is then
 // adapted by what the photons did: over all previous passes, n_l uniform paths were emitted from light l
 // and c_l of them had a photon that a lookup used; s_l = (c_l + s) / (n_l + 1) with s = sum c / sum n
-// (a sparsely sampled light shrinks towards the mean), and P_l = 0.8 P0_l s_l / sum_m P0_m s_m + 0.2 P0_l.
-// The 20 % defensive share keeps every light reachable, which a guide's uniform samples and the MIS
-// densities need. With LightMix, half of the paths pick a group uniformly, so that every group's layer
-// converges on its own. Before the first update, lights are picked by their emitted power.
+// (a sparsely sampled light shrinks towards the mean), and P_l = 0.8 P0_l s_l / sum_m P0_m s_m + 0.2 D_l.
+// The 20 % defensive share D is the same prior with each finite light's whole emitted power in place of
+// its photon power (an integrator's photon power may count only what leaves towards sharp objects): a
+// bright lamp that sees the glass small still makes caustics that matter where its light dominates. It
+// keeps every light with photon power reachable, which a guide's uniform samples and the MIS densities
+// need. With LightMix, half of the paths pick a group uniformly, so that every group's layer converges
+// on its own. Before the first update, lights are picked by their emitted power.
 #pragma once
 
 #include <nimbus/light_sampler.h>
@@ -32,6 +35,7 @@ class EmitterSelection {
     bool infinite = false;  // group I
     double distance2 = 1;   // finite: max(squared distance camera-bounds, eps^2)
     uint32_t group = 0;     // LightMix group
+    double power = 0;       // finite: the whole emitted power, for the defensive share (0: weight)
   };
 
   // The rule: each light's probability (summing to 1 over the lights of positive weight, or all 0) from
@@ -40,7 +44,11 @@ class EmitterSelection {
   static std::vector<double> probabilities(const std::vector<Light> &lights, const uint64_t *n,
                                            const uint64_t *c, bool lightmix) {
     const size_t count = lights.size();
-    std::vector<double> p0 = prior(lights), p(count, 0.0);
+    std::vector<Light> whole = lights;
+    for (Light &L : whole)
+      if (L.weight > 0 && !L.infinite && L.power > 0) L.weight = L.power;
+    const std::vector<double> p0 = prior(lights), d = prior(whole);
+    std::vector<double> p(count, 0.0);
     double n_sum = 0, c_sum = 0;
     for (size_t l = 0; n && c && l < count; ++l) n_sum += double(n[l]), c_sum += double(std::min(c[l], n[l]));
     const double mean = c_sum > 0 ? c_sum / n_sum : 0.0;
@@ -49,7 +57,7 @@ class EmitterSelection {
     if (c_sum > 0)
       for (size_t l = 0; l < count; ++l) adapted += p0[l] * score(l);
     for (size_t l = 0; l < count; ++l)
-      p[l] = adapted > 0 ? kAdapted * p0[l] * score(l) / adapted + (1 - kAdapted) * p0[l] : p0[l];
+      p[l] = (adapted > 0 ? kAdapted * p0[l] * score(l) / adapted : kAdapted * p0[l]) + (1 - kAdapted) * d[l];
     return lightmix ? balance_groups(lights, p) : p;
   }
 
@@ -65,8 +73,8 @@ class EmitterSelection {
       li.header.struct_size = sizeof(li);
       if (lights->info(host, i, &li) != NIMBUS_OK) return NIMBUS_E_INTERNAL;
       const Vec3f lo = Vec3f::load(li.bounds_min), hi = Vec3f::load(li.bounds_max);
-      lights_[i] = {lo, hi, (li.flags & NIMBUS_LIGHT_INFINITE) != 0, li.group};
       power[i] = std::isfinite(li.power) && li.power > 0 ? li.power : 0.0;
+      lights_[i] = {lo, hi, (li.flags & NIMBUS_LIGHT_INFINITE) != 0, li.group, power[i]};
     }
     scene_radius_ = info.scene_radius > 0 && std::isfinite(info.scene_radius) ? info.scene_radius : 1.0f;
     table_ = AliasTable(power);
@@ -85,7 +93,7 @@ class EmitterSelection {
       const double eps = std::max(0.5 * double(length(b.hi - b.lo)), 1e-3 * double(scene_radius_));
       const double w = f.photon_power[l];
       in[l] = {std::isfinite(w) && w > 0 ? w : 0.0, b.infinite,
-               std::max(double(length_squared(gap)), eps * eps), b.group};
+               std::max(double(length_squared(gap)), eps * eps), b.group, b.power};
     }
     table_ = AliasTable(probabilities(in, f.emitted, f.contributed, f.flags & NIMBUS_EMISSION_LIGHTMIX));
     return NIMBUS_OK;
@@ -106,6 +114,7 @@ class EmitterSelection {
     Vec3f lo, hi;
     bool infinite = false;
     uint32_t group = 0;
+    double power = 0;  // emitted power (the host's)
   };
 
   static std::vector<double> prior(const std::vector<Light> &lights) {
