@@ -146,6 +146,9 @@ def main():
             run([args.nimbus, "render", args.exclude_render, "-o", mask_exr, "--integrator", "pt",
                  "--iterations", "64", "--seed", "1", "-q"])
             excluded = (read_rgb(mask_exr) > 0).any(axis=-1)
+            if excluded.shape != ref_image.shape[:2]:
+                raise SystemExit(f"{args.exclude_render}: renders {excluded.shape[1]}x{excluded.shape[0]} "
+                                 f"pixels, {scene} {ref_image.shape[1]}x{ref_image.shape[0]}")
         mask = region_mask(ref_image, args.covered_only, crop, args.brighter_than, excluded)
         ref_var = 0.0
         if len(halves) == 2:

@@ -69,9 +69,10 @@ class EmitterSet {
       else
         aim_finite(e);
       // A finite light's photons bring caustics only by the power it sends towards sharp geometry (a
-      // spot turned away from every target sends none: path tracing samples its bounces).
-      const bool aims = e.own < 1 || targets_.empty();
-      w[i] = double(e.power) * (!e.infinite() ? double(e.toward) : aims ? 1.0 : double(kOwnShare));
+      // spot turned away from every target sends none: path tracing samples its bounces). An infinite
+      // light whose disk is the scene's, though targets exist, keeps the defensive share.
+      const bool scene_disk = e.infinite() && !(e.own < 1) && !targets_.empty();
+      w[i] = double(e.power) * (!e.infinite() ? double(e.toward) : scene_disk ? double(kOwnShare) : 1.0);
       e.first_slot = slots_;
       slots_ += e.infinite() ? (e.own < 1 ? 1 : 0) : uint32_t(e.aims.size());
     }
