@@ -26,13 +26,20 @@ Then the time to first pixel of each --first-pixel scene (default: scenes/defaul
 `nimbus render SCENE --iterations 1`, RUNS times, medians of the EXR's nimbus:load_seconds (reading the
 scene and loading plugins), setup_seconds (world and plugins), first_iteration_seconds and
 time_to_first_pixel, and of the whole command's wall time (which adds process start-up and writing the
-image). Not part of CI.
+image).
+
+With --instructions, also the instructions each renderer executes per camera sample, counted by
+callgrind (Debian's valgrind) and so exact and repeatable where times drift: the difference between
+renders of 8 and 4 frames (iterations) at --instructions-size (default 128x128), one thread, so that
+start-up, loading and writing cancel; split into Embree's share (its library) and the rest. A few
+minutes; `--runs 0 --instructions` counts instructions alone. Not part of CI.
 """
 import argparse
 import math
 import os
 import re
 import shlex
+import shutil
 import statistics
 import subprocess
 import sys
@@ -107,6 +114,49 @@ def first_pixel(nimbus, scene, threads, out):
     return tuple(float(m["nimbus:" + k]) for k in keys) + (wall,)
 
 
+def callgrind_instructions(cmd, cwd=None):
+    """(all, in Embree) instructions one command executes, counted by callgrind."""
+    with tempfile.TemporaryDirectory(prefix="nimbus_callgrind_") as tmp:
+        out_file = os.path.join(tmp, "callgrind.out")
+        subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out_file] + cmd, cwd=cwd,
+                       check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        report = subprocess.run(["callgrind_annotate", "--threshold=100", "--inclusive=no", "--show-percs=no",
+                                 out_file], capture_output=True, text=True, check=True).stdout
+    total = embree = 0
+    for line in report.splitlines():
+        m = re.match(r"\s*([0-9,]+)\s+(.*)$", line)
+        if not m:
+            continue
+        n = int(m.group(1).replace(",", ""))
+        if m.group(2).startswith("PROGRAM TOTALS"):
+            total = n
+        elif "libembree" in m.group(2):
+            embree += n
+    return total, embree
+
+
+def instructions_per_sample(a, tmp):
+    """Rows (renderer, instructions per sample, of them in Embree) of the tutorial and nimbus.pt."""
+    w, h = a.instructions_size
+    scene = os.path.join(tmp, "embree_cornell_box_small.yaml")
+    with open(scene, "w") as f:
+        f.write(nimbus_scene(a.ecs, (w, h), a.max_depth))
+    out = os.path.join(tmp, "instructions.exr")
+    commands = {
+        "embree tutorial pathtracer": lambda n: ([a.pathtracer, "-c", os.path.abspath(a.ecs), "--size", str(w), str(h), "--benchmark",
+                                                   "0", str(n), "--threads", "1", "--max-path-length",
+                                                   str(a.max_depth)], os.path.dirname(a.ecs)),
+        "nimbus.pt": lambda n: ([a.nimbus, "render", scene, "-o", out, "--iterations", str(n), "--threads", "1",
+                                 "-q"], None),
+    }
+    rows = []
+    for name, command in commands.items():
+        low, high = (callgrind_instructions(*command(n)) for n in (4, 8))
+        samples = w * h * 4
+        rows.append((name, (high[0] - low[0]) / samples, (high[1] - low[1]) / samples))
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--nimbus", default="build/bin/nimbus")
@@ -119,10 +169,15 @@ def main():
     ap.add_argument("--max-depth", type=int, default=8)
     ap.add_argument("--first-pixel", nargs="*", default=["scenes/default.yaml", "scenes/caustics/pool.yaml"],
                     help="scenes whose time to first pixel is measured")
+    ap.add_argument("--instructions", action="store_true",
+                    help="also count instructions per camera sample with callgrind")
+    ap.add_argument("--instructions-size", type=int, nargs=2, default=[128, 128])
     a = ap.parse_args()
     for tool in (a.pathtracer, a.ecs):
         if not os.path.exists(tool):
             sys.exit("%s is missing: apt-get install embree-tools" % tool)
+    if a.instructions and not shutil.which("valgrind"):
+        sys.exit("--instructions needs valgrind: apt-get install valgrind")
 
     tmp = tempfile.mkdtemp(prefix="nimbus_embree_ab_")
     scene = os.path.join(tmp, "embree_cornell_box.yaml")
@@ -146,21 +201,31 @@ def main():
         print(line, flush=True)
 
     med = statistics.median
-    print("\nmedians of %d runs" % a.runs)
-    print("%-32s %14s %12s %16s %14s" % ("", "M samples/s", "M rays/s", "samples ratio", "rays ratio"))
-    print("%-32s %14.3f %12.2f %16s %14s" % (
-        "embree tutorial pathtracer", med(e[0] for e in embree) / 1e6, med(e[1] for e in embree) / 1e6, "", ""))
-    for name, r in rows.items():
-        print("%-32s %14.3f %12.2f %15.2fx %13.2fx" % (
-            name, med(x[0] for x in r) / 1e6, med(x[1] for x in r) / 1e6, med(x[2] for x in r), med(x[3] for x in r)))
+    if a.runs:  # --runs 0: instructions only
+        print("\nmedians of %d runs" % a.runs)
+        print("%-32s %14s %12s %16s %14s" % ("", "M samples/s", "M rays/s", "samples ratio", "rays ratio"))
+        print("%-32s %14.3f %12.2f %16s %14s" % ("embree tutorial pathtracer", med(e[0] for e in embree) / 1e6,
+                                                 med(e[1] for e in embree) / 1e6, "", ""))
+        for name, r in rows.items():
+            print("%-32s %14.3f %12.2f %15.2fx %13.2fx" % (name, med(x[0] for x in r) / 1e6, med(x[1] for x in r) / 1e6,
+                                                         med(x[2] for x in r), med(x[3] for x in r)))
 
-    if a.first_pixel:
+    first_pixel_scenes = a.first_pixel if a.runs else []
+    if first_pixel_scenes:
         print("\ntime to first pixel, seconds (medians of %d renders of 1 iteration, %d threads)" % (a.runs, a.threads))
         print("%-32s %8s %8s %16s %14s %10s" % ("scene", "load", "setup", "first iteration", "first pixel",
                                                  "command"))
-    for scene in a.first_pixel:
+    for scene in first_pixel_scenes:
         runs = [first_pixel(a.nimbus, scene, a.threads, out) for _ in range(a.runs)]
         print("%-32s %8.3f %8.3f %16.3f %14.3f %10.3f" % ((scene,) + tuple(med(r[k] for r in runs) for k in range(5))))
+
+    if a.instructions:
+        rows = instructions_per_sample(a, tmp)
+        print("\ninstructions per camera sample (callgrind, %dx%d, 8 frames minus 4, one thread)" % tuple(
+            a.instructions_size))
+        print("%-32s %10s %10s %14s %18s" % ("", "all", "Embree", "outside Embree", "ratio to tutorial"))
+        for name, total, embree in rows:
+            print("%-32s %10.0f %10.0f %14.0f %17.2fx" % (name, total, embree, total - embree, total / rows[0][1]))
 
 
 if __name__ == "__main__":
