@@ -46,7 +46,7 @@ import sys
 import tempfile
 import time
 
-from nimbus_tools import exr_metadata
+from nimbus_tools import callgrind_instructions, exr_metadata
 
 
 def parse_ecs(path):
@@ -112,27 +112,6 @@ def first_pixel(nimbus, scene, threads, out):
     m = exr_metadata(out)
     keys = ("load_seconds", "setup_seconds", "first_iteration_seconds", "time_to_first_pixel")
     return tuple(float(m["nimbus:" + k]) for k in keys) + (wall,)
-
-
-def callgrind_instructions(cmd, cwd=None):
-    """(all, in Embree) instructions one command executes, counted by callgrind."""
-    with tempfile.TemporaryDirectory(prefix="nimbus_callgrind_") as tmp:
-        out_file = os.path.join(tmp, "callgrind.out")
-        subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out_file] + cmd, cwd=cwd,
-                       check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        report = subprocess.run(["callgrind_annotate", "--threshold=100", "--inclusive=no", "--show-percs=no",
-                                 out_file], capture_output=True, text=True, check=True).stdout
-    total = embree = 0
-    for line in report.splitlines():
-        m = re.match(r"\s*([0-9,]+)\s+(.*)$", line)
-        if not m:
-            continue
-        n = int(m.group(1).replace(",", ""))
-        if m.group(2).startswith("PROGRAM TOTALS"):
-            total = n
-        elif "libembree" in m.group(2):
-            embree += n
-    return total, embree
 
 
 def instructions_per_sample(a, tmp):

@@ -2,6 +2,7 @@
 finding a build's plugin directory, removing a render's files, swapping builds of one plugin library,
 reading an EXR's pixels bit for bit (read_exr, needs numpy)."""
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -35,6 +36,28 @@ def exr_metadata(path):
 def plugin_dir(nimbus):
     """The plugin directory of the build (a build tree or an install prefix) that holds bin/nimbus."""
     return os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(nimbus))), "lib", "nimbus", "plugins")
+
+
+def callgrind_instructions(cmd, cwd=None, part="libembree"):
+    """(all, in objects whose path contains `part`) instructions one command executes, counted by callgrind
+    (Debian's valgrind): exact and repeatable where times on a shared machine drift."""
+    with tempfile.TemporaryDirectory(prefix="nimbus_callgrind_") as tmp:
+        out_file = os.path.join(tmp, "callgrind.out")
+        subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=" + out_file] + cmd, cwd=cwd,
+                       check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        report = subprocess.run(["callgrind_annotate", "--threshold=100", "--inclusive=no", "--show-percs=no",
+                                 out_file], capture_output=True, text=True, check=True).stdout
+    total = in_part = 0
+    for line in report.splitlines():
+        m = re.match(r"\s*([0-9,]+)\s+(.*)$", line)
+        if not m:
+            continue
+        n = int(m.group(1).replace(",", ""))
+        if m.group(2).startswith("PROGRAM TOTALS"):
+            total = n
+        elif part in m.group(2):
+            in_part += n
+    return total, in_part
 
 
 def remove_render_outputs(out):
