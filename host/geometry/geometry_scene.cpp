@@ -157,11 +157,11 @@ GeometryScene::~GeometryScene() {
   if (device_) rtcReleaseDevice(device_);
 }
 
-float GeometryScene::embree_time(float time) const {
-  return moves_ ? std::clamp((time - shutter_open_) / (shutter_close_ - shutter_open_), 0.0f, 1.0f) : 0.0f;
-}
-
 void GeometryScene::intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit, float time) const {
+  if (!(ray.tnear <= ray.tfar)) {  // inactive ray
+    hit.geom_id = NIMBUS_NONE;
+    return;
+  }
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh;
@@ -171,10 +171,6 @@ void GeometryScene::intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit, float 
   rh.ray.time = embree_time(time), rh.ray.mask = 0xFFFFFFFFu, rh.ray.id = 0, rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  if (!(ray.tnear <= ray.tfar)) {  // inactive ray
-    hit.geom_id = NIMBUS_NONE;
-    return;
-  }
   rtcIntersect1(scene_, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
     hit = {kInfinity, 0, 0, NIMBUS_NONE, NIMBUS_NONE, NIMBUS_NONE};
@@ -201,7 +197,8 @@ bool GeometryScene::occluded(const nimbus_ray_t &ray, float time) const {
 
 void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out,
                                 float time) const {
-  out = nimbus_interaction_t{};
+  // Every field of `out` is written below, and the record has no padding: no zero-fill first.
+  static_assert(sizeof(nimbus_interaction_t) == 22 * sizeof(float));
   const ShapeRecord &s = shapes_[hit.geom_id];
   // Analytic shapes are computed where they are defined: a moving one in object space at the ray's time
   // (Embree's instance hit distance t holds there too), carried back to world space below.

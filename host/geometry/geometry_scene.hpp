@@ -7,6 +7,7 @@
 #include <embree3/rtcore.h>
 #include <nimbus/scene.h>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -60,7 +61,10 @@ class GeometryScene {
 
  private:
   GeometryScene() = default;
-  float embree_time(float time) const;  // scene time to Embree's [0, 1] over the shutter
+  // Scene time to Embree's [0, 1] over the shutter (inline: every ray asks).
+  float embree_time(float time) const {
+    return moves_ ? std::clamp((time - shutter_open_) / (shutter_close_ - shutter_open_), 0.0f, 1.0f) : 0.0f;
+  }
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<ShapeRecord> shapes_;
