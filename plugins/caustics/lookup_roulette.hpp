@@ -1,11 +1,14 @@
 // Russian roulette of photon lookups (solver spec 5): a camera path looks photons up at a rough vertex
 // with probability q, and a lookup that happens counts 1/q times. A lookup costs its kd-tree descent
 // whether or not it finds a photon, and behind a diffuse bounce lookups are incoherent (cache misses)
-// and most find little of the image's light. q is chosen per class of vertex (the path's first rough vertex,
-// and the ones after it) to minimise error x time, from what the solver measures: the merges' second moment
-// per class and the work of each class's lookups. The merge technique keeps its density q times the photon
-// density in every MIS weight (merging.cpp, mis.hpp), so the estimate stays unbiased and the weights a
-// partition of unity at any q.
+// and most find little of the image's light. q is chosen for the lookups behind the path's first rough
+// vertex to minimise error x time, from what the solver measures: the merges' second moment per class and
+// the work of each class's lookups. Lookups at the first rough vertex always happen (q = 1): they carry the
+// caustics the camera sees directly, which under delta lights nothing but merges renders, and a second
+// moment measured from few lookups is heavy-tailed and underestimated, so a low q would hold itself down
+// (docs/performance.md section 5). The merge technique keeps its density q times the photon density in every
+// MIS weight (merging.cpp, mis.hpp), so the estimate stays unbiased and the weights a partition of unity at
+// any q.
 #pragma once
 
 #include <algorithm>
@@ -41,15 +44,15 @@ class LookupRoulette {
   float probability(LookupClass c) const { return q_[c]; }
   const std::array<float, kLookupClasses> &probabilities() const { return q_; }
 
-  // The probabilities that minimise (V_o + sum M_c / q_c) (W_o + sum q_c w_c), V_o and W_o the variance
-  // and work without lookups, M_c and w_c a class's second moment and work at q = 1: at the optimum
-  // q_c = sqrt(M_c W / (V w_c)), W and V the totals. Each update takes that step from the current totals
-  // (a fixed-point iteration of the optimum), smoothed in log space: the variances are noisy.
+  // The later class's probability that minimises (V_o + sum M_c / q_c) (W_o + sum q_c w_c), V_o and W_o the
+  // variance and work without lookups, M_c and w_c a class's second moment and work at q = 1: at the
+  // optimum q_c = sqrt(M_c W / (V w_c)), W and V the totals. Each update takes that step from the current
+  // totals (a fixed-point iteration of the optimum), smoothed in log space: the variances are noisy.
   void update(const RouletteSample &s) {
     double work = s.other_work;
     for (double w : s.lookup_work) work += w;
     if (!(s.variance > 0) || !(work > 0)) return;
-    for (uint32_t c = 0; c < kLookupClasses; ++c) {
+    for (uint32_t c = kLaterLookup; c < kLookupClasses; ++c) {
       const double w1 = s.lookup_work[c] / q_[c];  // the class's work at q = 1
       if (!(w1 > 0)) continue;                     // no lookup happened: nothing learnt
       const double target = std::sqrt(std::max(0.0, s.second_moment[c]) * work / (s.variance * w1));
@@ -69,6 +72,7 @@ class LookupRoulette {
     for (float v : q)
       if (!(v >= kMinLookupProbability && v <= 1)) return false;
     q_ = q;
+    q_[kFirstLookup] = 1;  // never rouletted (a state saved by an older solver may hold less)
     return true;
   }
 
