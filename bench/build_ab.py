@@ -11,8 +11,9 @@ run are compared: the machine's speed drifts by +-10 % within minutes.
 
 With --instructions, the figure is instead the instructions each build executes per iteration, counted
 by callgrind (Debian's valgrind): repeatable to 0.01 % (the progress display and checkpoints follow the
-clock), so one run decides changes of a percent that times cannot. Each build renders every scene for N and 2N iterations (N = --iterations), one thread;
-the difference over N cancels start-up, loading and writing. Slow (callgrind runs ~50 times slower):
+clock), so one run decides changes of a percent that times cannot. Each build renders every scene for N
+and 2N iterations (N = --iterations), one thread; the difference over N cancels start-up, loading and
+writing. Slow (callgrind runs ~50 times slower):
 use a few iterations. Not part of CI.
 """
 import argparse

@@ -121,17 +121,19 @@ def instructions_per_sample(a, tmp):
     with open(scene, "w") as f:
         f.write(nimbus_scene(a.ecs, (w, h), a.max_depth))
     out = os.path.join(tmp, "instructions.exr")
-    commands = {
-        "embree tutorial pathtracer": lambda n: ([a.pathtracer, "-c", os.path.abspath(a.ecs), "--size", str(w), str(h), "--benchmark",
-                                                   "0", str(n), "--threads", "1", "--max-path-length",
-                                                   str(a.max_depth)], os.path.dirname(a.ecs)),
-        "nimbus.pt": lambda n: ([a.nimbus, "render", scene, "-o", out, "--iterations", str(n), "--threads", "1",
-                                 "-q"], None),
-    }
+    ecs = os.path.abspath(a.ecs)
+
+    def tutorial(n):
+        return ([a.pathtracer, "-c", ecs, "--size", str(w), str(h), "--benchmark", "0", str(n), "--threads", "1",
+                 "--max-path-length", str(a.max_depth)], os.path.dirname(ecs))
+
+    def nimbus(n):
+        return [a.nimbus, "render", scene, "-o", out, "--iterations", str(n), "--threads", "1", "-q"], None
+
+    samples = w * h * 4  # the 4 frames between the two counts
     rows = []
-    for name, command in commands.items():
+    for name, command in (("embree tutorial pathtracer", tutorial), ("nimbus.pt", nimbus)):
         low, high = (callgrind_instructions(*command(n)) for n in (4, 8))
-        samples = w * h * 4
         rows.append((name, (high[0] - low[0]) / samples, (high[1] - low[1]) / samples))
     return rows
 
