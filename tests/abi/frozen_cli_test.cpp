@@ -9,7 +9,7 @@
 #include "abi_test_support.hpp"
 
 namespace nimbus::abi_test {
-namespace {
+namespace frozen_cli_test {
 
 const char *const kFixtureIds[] = {"org.nimbus.abi.direct", "org.nimbus.abi.uniform",
                                    "org.nimbus.abi.cpp.constant", "org.nimbus.abi.cpp.guide"};
@@ -139,5 +139,5 @@ TEST(FrozenAbi10Cli, DispersiveSceneIsRefusedToAnIntegratorWithoutDispersion) {
       "4:10", "integrator 'org.nimbus.abi.direct' does not render dispersion");
 }
 
-}  // namespace
+}  // namespace frozen_cli_test
 }  // namespace nimbus::abi_test

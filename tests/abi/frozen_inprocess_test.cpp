@@ -8,7 +8,7 @@
 #include "loader/plugin_registry.hpp"
 
 namespace nimbus::abi_test {
-namespace {
+namespace frozen_inprocess_test {
 
 class FrozenAbi10InProcess : public ::testing::Test {
  protected:
@@ -58,5 +58,5 @@ TEST_F(FrozenAbi10InProcess, GuideAnswersThroughItsTable) {
   registry_.destroy(guide);
 }
 
-}  // namespace
+}  // namespace frozen_inprocess_test
 }  // namespace nimbus::abi_test

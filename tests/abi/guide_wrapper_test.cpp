@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-namespace {
+namespace guide_wrapper_test {
 
 std::vector<std::string> g_log;
 
@@ -242,4 +242,4 @@ TEST_F(PhotonGuideWrapper, ExceptionsAreLoggedAndTheChainReportsNothing) {
   EXPECT_EQ(g_log[1].rfind("org.nimbus.test.photon-guide: run_chain: trace: ", 0), 0u) << g_log[1];
 }
 
-}  // namespace
+}  // namespace guide_wrapper_test

@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-namespace {
+namespace per_worker_test {
 
 struct Record {  // the size of a camera path's sample record, not a multiple of a cache line
   float values[26];
@@ -47,4 +47,4 @@ TEST(SdkPerWorker, IndexesAndIteratesTheSameItems) {
   EXPECT_EQ(w[0u] + w[1u], 0u);
 }
 
-}  // namespace
+}  // namespace per_worker_test

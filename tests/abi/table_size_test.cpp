@@ -10,7 +10,7 @@
 #include "loader/plugin_version.hpp"
 
 namespace nimbus::abi_test {
-namespace {
+namespace table_size_test {
 
 TEST(TableSizes, HostIsNewerThanTheFrozenFixtures) {
   // Otherwise the frozen-1.0 tests would only prove that 1.0 loads into 1.0.
@@ -87,5 +87,5 @@ TEST(TableSizes, MissingInterfaceIsNamed) {
             "plugin 'org.nimbus.test.short' does not provide nimbus.iface.light-sampler@1");
 }
 
-}  // namespace
+}  // namespace table_size_test
 }  // namespace nimbus::abi_test

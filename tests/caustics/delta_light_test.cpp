@@ -20,7 +20,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace delta_light_test {
 
 namespace ref = reference;
 
@@ -290,5 +290,5 @@ TEST(CausticsDeltaLights, BallBehindMirror) {
   compare_with_reference("ball behind a mirror", behind_mirror(), kCaustic, 0.015);
 }
 
-}  // namespace
+}  // namespace delta_light_test
 }  // namespace nimbus::testing

@@ -9,7 +9,7 @@
 #include "sphere_scenes.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace dispersion_test {
 
 TEST(CausticsDispersion, DispersiveBallAgreesWithPathTracer) {
   std::string scene = sphere_scene(R"(
@@ -21,5 +21,5 @@ TEST(CausticsDispersion, DispersiveBallAgreesWithPathTracer) {
   agrees_with_path_tracer(scene);
 }
 
-}  // namespace
+}  // namespace dispersion_test
 }  // namespace nimbus::testing

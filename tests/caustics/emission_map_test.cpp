@@ -11,7 +11,7 @@
 #include "state_bytes.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace emission_map_test {
 
 using test::ChiSquareConfig;
 using test::Pcg32;
@@ -199,5 +199,5 @@ TEST(CausticsEmissionMap, LearntProjectionMapsMatchTheirDensities) {
   EXPECT_LE(other_cell, 20);
 }
 
-}  // namespace
+}  // namespace emission_map_test
 }  // namespace nimbus::caustics

@@ -12,7 +12,7 @@
 #include "state_bytes.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace emission_selection_test {
 
 // A sampler table whose update_emission keeps a copy of what it was told and whose pmf_emitter returns
 // g_pmf.
@@ -143,5 +143,5 @@ TEST(CausticsEmissionSelection, StateRoundTripsAndRejectsImpossibleCounts) {
   EXPECT_FALSE(back.restore(wrong_size));
 }
 
-}  // namespace
+}  // namespace emission_selection_test
 }  // namespace nimbus::caustics

@@ -14,7 +14,7 @@
 #include "photon_pass.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace emission_strata_test {
 
 using test::Pcg32;
 
@@ -93,11 +93,11 @@ TEST(CausticsEmissionStrata, ConsecutivePathsStayTogether) {
   }
 }
 
-}  // namespace
+}  // namespace emission_strata_test
 }  // namespace nimbus::caustics
 
 namespace nimbus::caustics {
-namespace {
+namespace emission_strata_test {
 
 // A task cut short by its memory guard leaves out the last paths of its order: task_path() must order
 // the run as a permutation, rotated differently from pass to pass, so that over many passes every path
@@ -121,5 +121,5 @@ TEST(CausticsPhotonPass, TaskOrderRotatesFromPassToPass) {
   for (uint64_t k = 0; k < n; ++k) EXPECT_NEAR(cut[k], passes / 4, 170) << "path " << b + k;
 }
 
-}  // namespace
+}  // namespace emission_strata_test
 }  // namespace nimbus::caustics

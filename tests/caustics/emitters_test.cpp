@@ -13,7 +13,7 @@
 #include "merging.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace emitters_test {
 
 using stubs::kStubLights;
 using stubs::pdf_dir_of;
@@ -292,5 +292,5 @@ TEST(CausticsEmitters, DensityWeightsAreTheMostLikelyShareOverTheLightsOwn) {
   EXPECT_EQ(w[2], kMaxDensityWeight);
 }
 
-}  // namespace
+}  // namespace emitters_test
 }  // namespace nimbus::caustics

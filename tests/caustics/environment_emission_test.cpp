@@ -10,7 +10,7 @@
 #include "environment_emission.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace environment_emission_test {
 
 using test::ChiSquareConfig;
 using test::Pcg32;
@@ -118,5 +118,5 @@ TEST(CausticsEnvironmentEmission, DensityIntegratesToOneOverTheSphere) {
   EXPECT_NEAR(integral, 1.0, 1e-4);
 }
 
-}  // namespace
+}  // namespace environment_emission_test
 }  // namespace nimbus::caustics

@@ -16,7 +16,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace furnace_test {
 
 constexpr uint32_t kSize = 64, kBlock = 16;
 constexpr int kRenders = 8;           // independent seeds: their spread gives every standard error
@@ -118,5 +118,5 @@ TEST(CausticsFurnace, EveryPixelConvergesToOne) {
   std::printf("furnace: worst 16x16 block %.2f standard errors from 1\n", worst);
 }
 
-}  // namespace
+}  // namespace furnace_test
 }  // namespace nimbus::testing

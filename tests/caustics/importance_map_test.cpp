@@ -12,7 +12,7 @@
 #include "state_bytes.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace importance_map_test {
 
 struct Mark {
   Vec3f p;
@@ -107,5 +107,5 @@ TEST(CausticsImportanceMap, StateRoundTripsAndRejectsBadValues) {
   EXPECT_FALSE(untouched.restore(truncated));
 }
 
-}  // namespace
+}  // namespace importance_map_test
 }  // namespace nimbus::caustics

@@ -13,7 +13,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace lightmix_weak_light_test {
 
 constexpr int kWidth = 64, kHeight = 32;
 
@@ -129,5 +129,5 @@ TEST_P(CausticsLightMix, WeakLightLayerConvergesLikeTheStrongOne) {
 
 INSTANTIATE_TEST_SUITE_P(PowerRatios, CausticsLightMix, ::testing::Values(1e4, 1e9));
 
-}  // namespace
+}  // namespace lightmix_weak_light_test
 }  // namespace nimbus::testing

@@ -11,7 +11,7 @@
 #include "state_bytes.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace lookup_roulette_test {
 
 // A camera pass of the model: V = V_o + sum M_c / q_c, W = W_o + sum q_c w_c.
 struct Model {
@@ -111,5 +111,5 @@ TEST(CausticsLookupRoulette, StateRoundTripsAndRejectsOutOfRangeValues) {
   EXPECT_FALSE(untouched.restore(short_state));
 }
 
-}  // namespace
+}  // namespace lookup_roulette_test
 }  // namespace nimbus::caustics

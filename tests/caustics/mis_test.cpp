@@ -12,7 +12,7 @@
 #include "mis_synthetic_paths.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace mis_test {
 
 // ---- production state machines --------------------------------------------------------------------
 struct PhotonAt {
@@ -256,5 +256,5 @@ TEST(CausticsMis, RoughFirstPhotonVertexHasNoMergeTechnique) {
   EXPECT_GT(sharp_end.s_cam(4).sum, 0.0);
 }
 
-}  // namespace
+}  // namespace mis_test
 }  // namespace nimbus::caustics

@@ -11,7 +11,7 @@
 #include "sphere_scenes.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace motion_test {
 
 const char *kShutter = ", shutter: { close: 1 }";
 const char *kPointLight = R"(
@@ -96,5 +96,5 @@ TEST(CausticsMotion, OnlyMovingGeometryOrLightsTimePhotons) {
   }
 }
 
-}  // namespace
+}  // namespace motion_test
 }  // namespace nimbus::testing

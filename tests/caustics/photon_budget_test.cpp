@@ -11,7 +11,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace photon_budget_test {
 
 using caustics::kPhotonsPerPathCap;
 using caustics::Photon;
@@ -66,5 +66,5 @@ lights:
   EXPECT_NEAR(b / a, 1.0, 0.08);
 }
 
-}  // namespace
+}  // namespace photon_budget_test
 }  // namespace nimbus::testing

@@ -14,7 +14,7 @@
 #include "photon_map.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace photon_map_test {
 
 enum class Layout { Uniform, Clustered, Coplanar, Collinear, Duplicates };
 
@@ -254,5 +254,5 @@ TEST(CausticsPhotonMap, OctahedralDirections) {
   }
 }
 
-}  // namespace
+}  // namespace photon_map_test
 }  // namespace nimbus::caustics

@@ -18,7 +18,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace photon_power_test {
 
 constexpr double kIntensity = 10, kHeight = 1, kHalf = 20, kIor = 1.5, kAlbedo = 0.05;
 // Passes estimate the flux independently, so 4 standard errors of their mean bound a correct solver's
@@ -96,5 +96,5 @@ TEST(CausticsPhotonPower, GuidedStoredFluxIsTheSlabsTransmittance) {
   stores_the_transmitted_flux({{"photon_emission", "guided"}}, 0.75);
 }
 
-}  // namespace
+}  // namespace photon_power_test
 }  // namespace nimbus::testing

@@ -11,7 +11,7 @@
 #include "emitters.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace photon_share_test {
 
 using stubs::kStubLights;
 using stubs::three_lights;
@@ -100,5 +100,5 @@ TEST(CausticsPhotonShare, KeySpotOnGlassIsNotStarvedByABrightFillLamp) {
   EXPECT_GT(p[0], 0.1) << "spot's share of the photon paths (all of it weighed by whole power: ~0.001)";
 }
 
-}  // namespace
+}  // namespace photon_share_test
 }  // namespace nimbus::caustics

@@ -10,7 +10,7 @@
 #include "state_bytes.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace pixel_radius_test {
 
 constexpr float kR = 0.01f, kNeff = 1e5f;
 
@@ -89,5 +89,5 @@ TEST(PixelRadius, StateRoundTripsAndRejectsBadInput) {
   EXPECT_FALSE(r.restore(bad));
 }
 
-}  // namespace
+}  // namespace pixel_radius_test
 }  // namespace nimbus::caustics

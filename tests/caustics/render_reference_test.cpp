@@ -16,7 +16,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace render_reference_test {
 
 // An environment map with a hot spot (a photographed sky with its sun) and no other light: photons come
 // from the hot spot only (environment_emission.hpp). Path tracing converges under a hittable environment
@@ -148,5 +148,5 @@ TEST(CausticsRender, FocusOfAPointLightIsNotBlurred) {
   EXPECT_LT(mean, 0.015);
 }
 
-}  // namespace
+}  // namespace render_reference_test
 }  // namespace nimbus::testing

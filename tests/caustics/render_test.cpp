@@ -13,7 +13,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace render_test {
 
 const char *kAreaLight = R"(
   - { shape: rectangle, size: [0.35, 0.35], material: lamp, emission: { radiance: [110, 110, 110] }, group: key,
@@ -181,5 +181,5 @@ TEST(CausticsRender, GuidedSameImageAtAnyThreadCountAndUniformWithoutGuide) {
   EXPECT_NE(c.layers.at("beauty").data, a.layers.at("beauty").data);
 }
 
-}  // namespace
+}  // namespace render_test
 }  // namespace nimbus::testing

@@ -6,7 +6,7 @@
 #include "schedule.hpp"
 
 namespace nimbus::caustics {
-namespace {
+namespace schedule_test {
 
 TEST(CausticsSchedule, RadiusStartsAtOneAndAHalfPixelsAndShrinks) {
   const float theta = 1e-3f, ell = 4.0f;
@@ -129,5 +129,5 @@ TEST(CausticsSchedule, BackOffWhenUseless) {
   EXPECT_TRUE(s.map_active());
 }
 
-}  // namespace
+}  // namespace schedule_test
 }  // namespace nimbus::caustics

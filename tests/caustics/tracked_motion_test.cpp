@@ -15,7 +15,7 @@
 #include "sphere_scenes.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace tracked_motion_test {
 
 constexpr uint32_t kWidth = 96, kHeight = 64;
 
@@ -99,5 +99,5 @@ TEST(CausticsTrackedMotion, CausticStaysSharpOnlyWhenLookupsMatchTime) {
   EXPECT_GT(w_smeared, w_still + 0.5 * travel);
 }
 
-}  // namespace
+}  // namespace tracked_motion_test
 }  // namespace nimbus::testing

@@ -10,7 +10,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus {
-namespace {
+namespace checkpoint_format_test {
 
 using e2e::TestDir;
 using test::add_iteration;
@@ -169,5 +169,5 @@ TEST(CheckpointFormat, ContentHashIsStableAndSensitive) {
   EXPECT_EQ(content_hash("x").size(), 16u);
 }
 
-}  // namespace
+}  // namespace checkpoint_format_test
 }  // namespace nimbus

@@ -9,7 +9,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus {
-namespace {
+namespace checkpoint_validation_test {
 
 using e2e::read_bytes;
 using e2e::TestDir;
@@ -144,5 +144,5 @@ TEST_F(CheckpointValidation, FingerprintMismatchNamesTheFieldsThatDiffer) {
   expect_refused(path_, "options: checkpoint '(none)', this render 'caustics:on'", info);
 }
 
-}  // namespace
+}  // namespace checkpoint_validation_test
 }  // namespace nimbus

@@ -14,7 +14,7 @@
 #include "film/checkpoint.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace resume_cli_test {
 
 bool contains(const std::string &text, const std::string &part) {
   return text.find(part) != std::string::npos;
@@ -299,5 +299,5 @@ TEST(Resume, BadCheckpointOptionsAreUsageErrors) {
   }
 }
 
-}  // namespace
+}  // namespace resume_cli_test
 }  // namespace nimbus::e2e

@@ -9,7 +9,7 @@
 #include "film/film.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace compare_cli_test {
 
 constexpr uint32_t kW = 5, kH = 3;
 
@@ -119,5 +119,5 @@ TEST(CompareCli, ErrorsExitNonZeroAndSayWhy) {
   }
 }
 
-}  // namespace
+}  // namespace compare_cli_test
 }  // namespace nimbus::e2e

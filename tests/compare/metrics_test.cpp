@@ -9,7 +9,7 @@
 #include "film/image_compare.hpp"
 
 namespace nimbus {
-namespace {
+namespace metrics_test {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
@@ -145,5 +145,5 @@ TEST(Heatmap, ViridisOnALogScaleWithMagentaForNonFinite) {
   EXPECT_NE(heatmap_legend().find("<= 1e-4"), std::string::npos) << heatmap_legend();
 }
 
-}  // namespace
+}  // namespace metrics_test
 }  // namespace nimbus

@@ -10,7 +10,7 @@
 #include <nimbus/cpp/sampling.hpp>
 
 namespace nimbus {
-namespace {
+namespace bounding_sphere_test {
 
 std::vector<Vec3f> on_sphere(const Vec3f &c, float r, int n, uint32_t seed) {
   std::mt19937 rng(seed);
@@ -54,5 +54,5 @@ TEST(BoundingSphere, EnclosesFlatAndClusteredSets) {
   EXPECT_LT(s.radius, 20.1f * 1.15f);  // the smallest is ~20.1 (the two clusters' extremes)
 }
 
-}  // namespace
+}  // namespace bounding_sphere_test
 }  // namespace nimbus

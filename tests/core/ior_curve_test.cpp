@@ -11,7 +11,7 @@
 #include "core/ior_curve.hpp"
 
 namespace nimbus {
-namespace {
+namespace ior_curve_test {
 
 // Schott's N-BK7 Sellmeier coefficients (C in um^2), from the catalogue data sheet.
 IorCurve n_bk7() {
@@ -100,5 +100,5 @@ TEST(IorCurve, ValidationRejectsUnusableCurves) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace ior_curve_test
 }  // namespace nimbus

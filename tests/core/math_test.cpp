@@ -12,7 +12,7 @@
 #include <nimbus/cpp/math.hpp>
 
 namespace nimbus {
-namespace {
+namespace math_test {
 
 TEST(Atan2Fast, WithinTwoUlpsOfPiEverywhere) {
   double worst = 0;
@@ -69,5 +69,5 @@ TEST(NextFloat, AsNextafterForEveryFiniteFloat) {
   EXPECT_TRUE(std::isnan(next_float(std::numeric_limits<float>::quiet_NaN(), true)));
 }
 
-}  // namespace
+}  // namespace math_test
 }  // namespace nimbus

@@ -10,7 +10,7 @@
 #include "core/shutter.hpp"
 
 namespace nimbus {
-namespace {
+namespace motion_test {
 
 void expect_near(const Transform &a, const Transform &b, float tol) {
   for (int r = 0; r < 3; ++r)
@@ -140,5 +140,5 @@ TEST(MotionTransform, UnevenKeysAreResampledOntoAnEvenGrid) {
   EXPECT_FALSE(MotionTransform(b).moves());
 }
 
-}  // namespace
+}  // namespace motion_test
 }  // namespace nimbus

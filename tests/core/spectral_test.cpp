@@ -14,7 +14,7 @@
 #include <nimbus/cpp/spectral.hpp>
 
 namespace nimbus {
-namespace {
+namespace spectral_test {
 
 // Composite Simpson's rule of f over [a, b] in n (even) steps, in double. The integrands are smooth
 // Gaussians and sigmoids with features ~10 nm wide, so 0.1 nm steps leave errors far below 1e-8.
@@ -188,5 +188,5 @@ TEST(SigmoidSpectrum, ConstantsAndBounds) {
   }
 }
 
-}  // namespace
+}  // namespace spectral_test
 }  // namespace nimbus

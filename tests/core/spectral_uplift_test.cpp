@@ -15,7 +15,7 @@
 #include "core/spectral_uplift.hpp"
 
 namespace nimbus {
-namespace {
+namespace spectral_uplift_test {
 
 // Simpson's rule at 0.1 nm with the weights tabulated once: a reference 25 times finer than the fit's.
 class FineIntegrator {
@@ -198,5 +198,5 @@ TEST(RgbUpliftTable, SharedTableIsBuiltOnceForConcurrentUsers) {
   EXPECT_LT(max_component(abs(fine().rgb(e.shape) * e.scale - Vec3f(8, 4, 1))), 16 * 1.5e-3f);
 }
 
-}  // namespace
+}  // namespace spectral_uplift_test
 }  // namespace nimbus

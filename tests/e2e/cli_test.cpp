@@ -9,7 +9,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace cli_test {
 
 bool contains(const std::string &text, const std::string &part) {
   return text.find(part) != std::string::npos;
@@ -128,5 +128,5 @@ TEST(Cli, PluginsListsTheBuiltInPluginsAsLoaded) {
   expect_loaded("nimbus.lights.power", "light-sampler");
 }
 
-}  // namespace
+}  // namespace cli_test
 }  // namespace nimbus::e2e

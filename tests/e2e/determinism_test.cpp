@@ -10,7 +10,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace determinism_test {
 
 struct Rendered {
   std::vector<float> rgb[3];
@@ -97,5 +97,5 @@ TEST(Determinism, DifferentSeedGivesDifferentImage) {
   EXPECT_GT(differing_pixels(*a, *b), a->rgb[0].size() / 2);
 }
 
-}  // namespace
+}  // namespace determinism_test
 }  // namespace nimbus::e2e

@@ -14,7 +14,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace disk_full_test {
 
 // A tmpfs of `kilobytes` mounted on a fresh directory for the test's lifetime.
 class SmallFileSystem {
@@ -95,5 +95,5 @@ TEST(DiskFull, ReadOnlyDirectoryIsRefusedBeforeTheRender) {
   EXPECT_EQ(read_bytes(out), exr);
 }
 
-}  // namespace
+}  // namespace disk_full_test
 }  // namespace nimbus::e2e

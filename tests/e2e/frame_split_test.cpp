@@ -16,7 +16,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace frame_split_test {
 
 // scenes/split_sphere.yaml: a small glass sphere's caustic under a point light, with the caustics element
 // and a LightMix layer for each of its two lights.
@@ -196,5 +196,5 @@ TEST(FrameSplit, TasksStopOnTheirOwnAndResumeOnlyThemselves) {
   EXPECT_LT(meta_number(*img, "nimbus:estimated_relmse").value_or(1), 0.05);
 }
 
-}  // namespace
+}  // namespace frame_split_test
 }  // namespace nimbus::e2e

@@ -12,7 +12,7 @@
 #include "scene/scene_parser.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace furnace_test {
 
 constexpr uint32_t kBlock = 8;
 // How many standard errors an 8x8 block mean may stray; with ~40 blocks and 3 channels a correct
@@ -153,5 +153,5 @@ TEST(Furnace, GreySphereReflectsHalfAndEmitterStaysOne) {
   for (const char *c : {"R", "G", "B"}) check_channel(*f, c, expected);
 }
 
-}  // namespace
+}  // namespace furnace_test
 }  // namespace nimbus::e2e

@@ -11,7 +11,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace integrator_options_test {
 
 bool contains(const std::string &text, const std::string &part) {
   return text.find(part) != std::string::npos;
@@ -109,11 +109,11 @@ TEST(IntegratorOptions, PluginsCommandPrintsTheDeclarations) {
   EXPECT_TRUE(contains(none.err, "org.example.none")) << none.err;
 }
 
-}  // namespace
+}  // namespace integrator_options_test
 }  // namespace nimbus::e2e
 
 namespace nimbus::e2e {
-namespace {
+namespace integrator_options_test {
 
 // The shipped default scene at 96 x 96: it names no integrator, so the caustics solver renders it (with
 // photons: it has a glass sphere); `--caustics off` renders exactly what `--integrator pt` renders.
@@ -147,11 +147,11 @@ TEST(IntegratorOptions, CausticsSolverIsTheDefaultAndOffIsThePathTracer) {
   EXPECT_NE(plane(on, "R"), plane(pt, "R"));
 }
 
-}  // namespace
+}  // namespace integrator_options_test
 }  // namespace nimbus::e2e
 
 namespace nimbus::e2e {
-namespace {
+namespace integrator_options_test {
 
 // A glass ball on a floor under a point light, seen straight down (64 x 64 pixels of 0.058 units, the
 // image's x along world x). Path tracing cannot render a point light's caustic, so `--caustics off` leaves
@@ -214,5 +214,5 @@ TEST(IntegratorOptions, CausticsSwitchAddsTheCausticWhereItIs) {
   EXPECT_LT(l_on, l_off * 1.02);
 }
 
-}  // namespace
+}  // namespace integrator_options_test
 }  // namespace nimbus::e2e

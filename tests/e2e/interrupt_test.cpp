@@ -13,7 +13,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace interrupt_test {
 
 constexpr int kManyIterations = 100000;  // far more than any run of this test reaches
 const std::string kOldContent = "an earlier render, not an EXR\n";
@@ -141,5 +141,5 @@ TEST(Interrupt, SecondCtrlCStopsAtOnceAndLeavesOldOrCompleteFile) {
   }
 }
 
-}  // namespace
+}  // namespace interrupt_test
 }  // namespace nimbus::e2e

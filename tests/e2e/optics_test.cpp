@@ -11,7 +11,7 @@
 #include "edge_profile.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace optics_test {
 
 // With ~20 columns and one width per edge a correct renderer exceeds 5 sigma with probability < 1e-5.
 constexpr double kSigmas = 5;
@@ -146,5 +146,5 @@ TEST(Optics, EachFilterKeepsAFlatFieldAndWidensAnEdgeByItsRadius) {
         << names[i] << " vs " << names[i + 1];
 }
 
-}  // namespace
+}  // namespace optics_test
 }  // namespace nimbus::e2e

@@ -11,7 +11,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace region_test {
 
 constexpr uint32_t kWidth = 64, kHeight = 48;  // box.yaml
 // Not on the 32-pixel tile grid, so that clipped tiles are exercised.
@@ -123,5 +123,5 @@ TEST(RenderRegion, CausticsSolverRendersTheRegionWithPhotons) {
   EXPECT_EQ(lit_outside, 0u);
 }
 
-}  // namespace
+}  // namespace region_test
 }  // namespace nimbus::e2e

@@ -10,7 +10,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace render_output_test {
 
 constexpr int kWidth = 64, kHeight = 48;  // tests/e2e/scenes/box.yaml
 
@@ -86,11 +86,11 @@ TEST(RenderOutput, QuietRenderPrintsNothing) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("q.png")));
 }
 
-}  // namespace
+}  // namespace render_output_test
 }  // namespace nimbus::e2e
 
 namespace nimbus::e2e {
-namespace {
+namespace render_output_test {
 
 // The command line's stopping rules replace the scene's: `--time` on a scene that says `iterations: 4`
 // renders until the time is up (more than 4 iterations of this tiny scene in 1.5 s on any machine that
@@ -108,5 +108,5 @@ TEST(RenderOutput, CommandLineTimeReplacesTheScenesIterations) {
   EXPECT_GT(*iterations, 4);
 }
 
-}  // namespace
+}  // namespace render_output_test
 }  // namespace nimbus::e2e

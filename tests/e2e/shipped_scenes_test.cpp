@@ -10,7 +10,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace shipped_scenes_test {
 
 TEST(ShippedScenes, EveryOneRendersWithItsOwnIntegrator) {
   std::vector<std::filesystem::path> scenes;
@@ -33,5 +33,5 @@ TEST(ShippedScenes, EveryOneRendersWithItsOwnIntegrator) {
   }
 }
 
-}  // namespace
+}  // namespace shipped_scenes_test
 }  // namespace nimbus::e2e

@@ -18,7 +18,7 @@
 #include "scene/scene_parser.hpp"
 
 namespace nimbus::extremes {
-namespace {
+namespace conductor_test {
 
 // SplitMix64 as a uniform source: deterministic everywhere, unlike the standard distributions.
 struct SplitMix {
@@ -192,5 +192,5 @@ TEST(ConductorFurnace, SmoothIdealMirrorIsExactlyOneEverywhere) {
   EXPECT_LE(worst, 1e-5f);
 }
 
-}  // namespace
+}  // namespace conductor_test
 }  // namespace nimbus::extremes

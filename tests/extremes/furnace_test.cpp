@@ -19,7 +19,7 @@
 #include "glass_furnace_model.hpp"
 
 namespace nimbus::extremes {
-namespace {
+namespace furnace_test {
 
 struct Glass {
   float ior, roughness;
@@ -146,5 +146,5 @@ environment: { color: [1, 1, 1] }
   }
 }
 
-}  // namespace
+}  // namespace furnace_test
 }  // namespace nimbus::extremes

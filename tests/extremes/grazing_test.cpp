@@ -12,7 +12,7 @@
 #include "furnace_support.hpp"
 
 namespace nimbus::extremes {
-namespace {
+namespace grazing_test {
 
 struct GrazingCase {
   const char *name;
@@ -157,5 +157,5 @@ TEST(GrazingFurnace, RoughMirrorPlaneNeverGains) {
   }
 }
 
-}  // namespace
+}  // namespace grazing_test
 }  // namespace nimbus::extremes

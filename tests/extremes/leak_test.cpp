@@ -13,7 +13,7 @@
 #include "extremes_support.hpp"
 
 namespace nimbus::extremes {
-namespace {
+namespace leak_test {
 
 // `s` scales every length (the point light's intensity by s^2, so irradiance stays the same), `ox` moves
 // the scene along x, `panel_gap` is the distance from the +x wall to the panel facing it (box units).
@@ -108,5 +108,5 @@ lights:
   }
 }
 
-}  // namespace
+}  // namespace leak_test
 }  // namespace nimbus::extremes

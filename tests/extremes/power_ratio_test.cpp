@@ -19,7 +19,7 @@
 #include "extremes_support.hpp"
 
 namespace nimbus::extremes {
-namespace {
+namespace power_ratio_test {
 
 constexpr double kRatio = 1e9;
 
@@ -123,5 +123,5 @@ INSTANTIATE_TEST_SUITE_P(Extremes, PowerRatioOutside,
                                                                                                : "tree");
                          });
 
-}  // namespace
+}  // namespace power_ratio_test
 }  // namespace nimbus::extremes

@@ -21,7 +21,7 @@
 #include "scene/scene_parser.hpp"
 
 namespace nimbus::extremes {
-namespace {
+namespace ray_leak_test {
 
 struct SplitMix {
   uint64_t s;
@@ -149,5 +149,5 @@ INSTANTIATE_TEST_SUITE_P(FarFromOrigin, RayLeak,
                            return n;
                          });
 
-}  // namespace
+}  // namespace ray_leak_test
 }  // namespace nimbus::extremes

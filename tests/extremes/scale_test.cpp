@@ -10,7 +10,7 @@
 #include "extremes_support.hpp"
 
 namespace nimbus::extremes {
-namespace {
+namespace scale_test {
 
 // A closed white room (one box mesh, so its corners are watertight), the camera inside, a ceiling light,
 // a glass and a metal sphere resting on the floor and a rotated diffuse cube on it: contact points,
@@ -167,5 +167,5 @@ TEST_F(Scale, FarFromOriginMatchesUnitScale) {
   }
 }
 
-}  // namespace
+}  // namespace scale_test
 }  // namespace nimbus::extremes

@@ -12,7 +12,7 @@
 #include "e2e_support.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace fault_matrix_test {
 
 constexpr uint32_t kWidth = 72, kHeight = 40;  // 3 x 2 tiles of 32 pixels, the last ones partial
 constexpr uint64_t kIterations = 5, kFaultIteration = 3;
@@ -193,5 +193,5 @@ TEST(FaultValues, NoFaultRendersTheExactImage) {
   expect_exact_image(*img, kIterations);
 }
 
-}  // namespace
+}  // namespace fault_matrix_test
 }  // namespace nimbus::e2e

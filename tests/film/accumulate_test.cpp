@@ -9,7 +9,7 @@
 #include "film/film.hpp"
 
 namespace nimbus {
-namespace {
+namespace accumulate_test {
 
 TEST(FilmAccumulate, ResolveAveragesOverCompletedIterations) {
   Film film(4, 3);
@@ -123,5 +123,5 @@ TEST(FilmAccumulate, ConcurrentWritersOnDisjointPixels) {
   }
 }
 
-}  // namespace
+}  // namespace accumulate_test
 }  // namespace nimbus

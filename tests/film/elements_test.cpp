@@ -4,7 +4,7 @@
 #include "film/film.hpp"
 
 namespace nimbus {
-namespace {
+namespace elements_test {
 
 TEST(FilmElements, BeautyIsAlwaysRegisteredAndActive) {
   Film film(8, 8);
@@ -110,5 +110,5 @@ TEST(FilmElements, RequestingBeautyIsHarmless) {
   EXPECT_EQ(film.active_elements(), std::vector<int32_t>{Film::kBeauty});
 }
 
-}  // namespace
+}  // namespace elements_test
 }  // namespace nimbus

@@ -13,7 +13,7 @@
 #include "scratch_dir.hpp"
 
 namespace nimbus {
-namespace {
+namespace exr_test {
 
 using test::read_bytes;
 using test::ScratchDir;
@@ -182,5 +182,5 @@ TEST(FilmExr, ReadingAMissingFileIsAnError) {
   EXPECT_NE(read.error().message.find("/nonexistent/nimbus.exr"), std::string::npos);
 }
 
-}  // namespace
+}  // namespace exr_test
 }  // namespace nimbus

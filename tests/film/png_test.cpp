@@ -12,7 +12,7 @@
 #include "scratch_dir.hpp"
 
 namespace nimbus {
-namespace {
+namespace png_test {
 
 using test::ScratchDir;
 
@@ -146,5 +146,5 @@ TEST_F(OcioEnv, BuildTreeCopyIsFoundNextToTheExecutable) {
   EXPECT_TRUE(status.ok()) << status.error().message;
 }
 
-}  // namespace
+}  // namespace png_test
 }  // namespace nimbus

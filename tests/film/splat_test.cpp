@@ -8,7 +8,7 @@
 #include "film/film.hpp"
 
 namespace nimbus {
-namespace {
+namespace splat_test {
 
 struct Splat {
   float fx, fy, v[3];
@@ -139,5 +139,5 @@ TEST(FilmSplat, BadSplatsAreDroppedAndNonFiniteOnesCounted) {
   for (float c : film.resolve(albedo)) EXPECT_EQ(c, 0.0f);
 }
 
-}  // namespace
+}  // namespace splat_test
 }  // namespace nimbus

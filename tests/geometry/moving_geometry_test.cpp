@@ -15,7 +15,7 @@
 #include "world/world.hpp"
 
 namespace nimbus {
-namespace {
+namespace moving_geometry_test {
 
 nimbus_ray_t ray_from(const Vec3f &o, const Vec3f &d) {
   nimbus_ray_t r{};
@@ -256,5 +256,5 @@ TEST(MovingGeometry, SceneQueryAndCameraServicesCarryTime) {
   EXPECT_EQ(pdf, 1.0f);
 }
 
-}  // namespace
+}  // namespace moving_geometry_test
 }  // namespace nimbus

@@ -8,7 +8,7 @@
 #include "scene/scene_desc.hpp"
 
 namespace nimbus {
-namespace {
+namespace ray_query_test {
 
 MeshData box_mesh(const Vec3f &lo, const Vec3f &hi) {
   MeshData m;
@@ -184,5 +184,5 @@ TEST(RayQuery, DiskHitInsideRadiusOnly) {
   EXPECT_EQ(hit.geom_id, NIMBUS_NONE);
 }
 
-}  // namespace
+}  // namespace ray_query_test
 }  // namespace nimbus

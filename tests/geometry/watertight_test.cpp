@@ -7,7 +7,7 @@
 #include "scene/scene_desc.hpp"
 
 namespace nimbus {
-namespace {
+namespace watertight_test {
 
 ShapeDesc box(const Vec3f &lo, const Vec3f &hi) {
   ShapeDesc s;
@@ -47,5 +47,5 @@ TEST(Watertight, AnObjectFarFromTheOriginForItsSizeGetsTheRobustTest) {
   EXPECT_TRUE(watertight({box(Vec3f(65, 0, 0), Vec3f(66, 0.1f, 0.1f))}));
 }
 
-}  // namespace
+}  // namespace watertight_test
 }  // namespace nimbus

@@ -10,7 +10,7 @@
 #include "toy_targets.hpp"
 
 namespace nimbus::guide_test {
-namespace {
+namespace chain_test {
 
 using guide::chain_budget;
 using guide::chain_stream;
@@ -147,5 +147,5 @@ TEST(GuideChain, SkipSwitchDropsTheMutationOnlyAfterASwap) {
   EXPECT_GT(with.proposals, with.chain_steps / 2) << "an exchange succeeds in a minority of steps";
 }
 
-}  // namespace
+}  // namespace chain_test
 }  // namespace nimbus::guide_test

@@ -9,7 +9,7 @@
 #include "spiky_fit.hpp"
 
 namespace nimbus::guide_test {
-namespace {
+namespace example_guide_test {
 
 TEST(ExampleIndependenceGuide, SatisfiesTheEstimatorContract) {
   LoadedGuide g("org.example.independence", NIMBUS_GUIDE_FIXTURE_DIR);
@@ -49,5 +49,5 @@ TEST(ExampleIndependenceGuide, SatisfiesTheEstimatorContract) {
   EXPECT_NEAR(g_estimate / SpikyIntegrand::integral(), 1.0, 0.01);
 }
 
-}  // namespace
+}  // namespace example_guide_test
 }  // namespace nimbus::guide_test

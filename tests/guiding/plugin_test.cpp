@@ -11,7 +11,7 @@
 #include "toy_targets.hpp"
 
 namespace nimbus::guide_test {
-namespace {
+namespace plugin_test {
 
 constexpr uint32_t kDims = 4;
 const GaussianBump kBump{0.03};
@@ -157,5 +157,5 @@ TEST(MetropolisGuidePlugin, RefusesBadCalls) {
   EXPECT_FALSE(g.messages().empty());
 }
 
-}  // namespace
+}  // namespace plugin_test
 }  // namespace nimbus::guide_test

@@ -10,7 +10,7 @@
 #include "toy_targets.hpp"
 
 namespace nimbus::guide_test {
-namespace {
+namespace render_state_test {
 
 constexpr uint32_t kDims = 4, kChains = 64;
 constexpr uint64_t kBudget = kChains * 200;
@@ -91,5 +91,5 @@ TEST(MetropolisGuideState, UnreadableBytesAreRefusedAndChangeNothing) {
   expect_same_paths(run(fresh, 1), first, "pass 1 after the refusals");
 }
 
-}  // namespace
+}  // namespace render_state_test
 }  // namespace nimbus::guide_test

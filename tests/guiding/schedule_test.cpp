@@ -9,7 +9,7 @@
 #include "mutation_schedule.hpp"
 
 namespace nimbus::guide_test {
-namespace {
+namespace schedule_test {
 
 using guide::MutationSchedule;
 
@@ -91,5 +91,5 @@ TEST(MutationSchedule, RefusesStatesItCannotHold) {
   EXPECT_EQ(r.begin(1), MutationSchedule::kInitial) << "unchanged by the refusals";
 }
 
-}  // namespace
+}  // namespace schedule_test
 }  // namespace nimbus::guide_test

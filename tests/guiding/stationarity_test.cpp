@@ -16,7 +16,7 @@
 #include "toy_targets.hpp"
 
 namespace nimbus::guide_test {
-namespace {
+namespace stationarity_test {
 
 constexpr uint32_t kChains = 256;
 constexpr uint64_t kSteps = 10'000;
@@ -100,5 +100,5 @@ TEST(GuideStationaritySkip, SkippingTheMutationAfterASwapFailsTheChiSquareTest) 
   }
 }
 
-}  // namespace
+}  // namespace stationarity_test
 }  // namespace nimbus::guide_test

@@ -12,7 +12,7 @@
 #include "lightmix_fixture.hpp"
 
 namespace nimbus::e2e {
-namespace {
+namespace lightmix_cli_test {
 
 bool contains(const std::string &text, const std::string &part) {
   return text.find(part) != std::string::npos;
@@ -167,5 +167,5 @@ void expect_layers_sum_and_relight(const std::string &integrator) {
 TEST(LightMixCli, PathTracerLayersSumToBeautyAndRelight) { expect_layers_sum_and_relight("pt"); }
 TEST(LightMixCli, LightTracerLayersSumToBeautyAndRelight) { expect_layers_sum_and_relight("lt"); }
 
-}  // namespace
+}  // namespace lightmix_cli_test
 }  // namespace nimbus::e2e

@@ -10,7 +10,7 @@
 #include "lightmix_fixture.hpp"
 
 namespace nimbus {
-namespace {
+namespace recombine_test {
 
 using e2e::TestDir;
 using test::LightMixImage;
@@ -170,5 +170,5 @@ TEST(LightMixSetting, MalformedSettingsSayWhatIsWrong) {
   }
 }
 
-}  // namespace
+}  // namespace recombine_test
 }  // namespace nimbus

@@ -9,7 +9,7 @@
 #include <nimbus/cpp/alias_table.hpp>
 
 namespace nimbus {
-namespace {
+namespace alias_table_test {
 
 // Picks per bin over all 2^24 values u = m / 2^24: exact frequencies, no noise.
 std::vector<uint64_t> count_all_u(const AliasTable &table) {
@@ -58,5 +58,5 @@ TEST(AliasTable, AllZeroIsEmpty) {
   EXPECT_EQ(pmf, 0.0f);
 }
 
-}  // namespace
+}  // namespace alias_table_test
 }  // namespace nimbus

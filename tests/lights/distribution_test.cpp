@@ -9,7 +9,7 @@
 #include <nimbus/cpp/distribution.hpp>
 
 namespace nimbus {
-namespace {
+namespace distribution_test {
 
 void expect_rates_match_pdf(const std::vector<float> &f, size_t w, size_t h) {
   const Distribution2D d(f, w, h);
@@ -64,5 +64,5 @@ TEST(Distribution2D, DynamicRangeOfSixDecades) {
   expect_rates_match_pdf(f, w, h);
 }
 
-}  // namespace
+}  // namespace distribution_test
 }  // namespace nimbus

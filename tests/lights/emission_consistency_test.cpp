@@ -13,7 +13,7 @@
 #include "materials/test_helpers.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace emission_consistency_test {
 
 using test::Pcg32;
 
@@ -190,5 +190,5 @@ TEST(LightInfo, OlderCallersGetTheirMembersOnly) {
   EXPECT_EQ(h.table().info(h.host(), 1, info), NIMBUS_E_INVALID_ARG);
 }
 
-}  // namespace
+}  // namespace emission_consistency_test
 }  // namespace nimbus::testing

@@ -17,7 +17,7 @@
 #include "materials/chi_square.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace emission_distribution_test {
 
 using test::ChiSquareConfig;
 using test::ChiSquareResult;
@@ -297,5 +297,5 @@ TEST(EmissionDistribution, MeshPositions) {
   }
 }
 
-}  // namespace
+}  // namespace emission_distribution_test
 }  // namespace nimbus::testing

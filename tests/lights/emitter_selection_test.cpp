@@ -10,7 +10,7 @@
 #include "emission_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace emitter_selection_test {
 
 using Light = sdk::EmitterSelection::Light;
 
@@ -123,5 +123,5 @@ lights:
   EXPECT_NEAR(s.pmf(2), 0.5, 1e-6);
 }
 
-}  // namespace
+}  // namespace emitter_selection_test
 }  // namespace nimbus::testing

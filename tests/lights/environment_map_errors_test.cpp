@@ -11,7 +11,7 @@
 #include "lights/light_set.hpp"
 
 namespace nimbus {
-namespace {
+namespace environment_map_errors_test {
 
 // The error load_environment_map gives for `path` (the test fails if it loads).
 std::string load_error(const std::string &path) {
@@ -57,5 +57,5 @@ TEST(EnvironmentMapErrors, HeadersClaimingHugeSizesAreRefusedBeforeAllocating) {
   }
 }
 
-}  // namespace
+}  // namespace environment_map_errors_test
 }  // namespace nimbus

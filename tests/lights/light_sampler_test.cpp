@@ -15,7 +15,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace light_sampler_test {
 
 // A room lit by 40 area lights of powers over 6 decades, 10 point lights, a spot and a sun.
 std::string many_lights_scene() {
@@ -292,5 +292,5 @@ lights:
   EXPECT_LE(contributed[1], emitted[1]);
 }
 
-}  // namespace
+}  // namespace light_sampler_test
 }  // namespace nimbus::testing

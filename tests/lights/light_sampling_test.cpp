@@ -14,7 +14,7 @@
 #include "scene/scene_parser.hpp"
 
 namespace nimbus {
-namespace {
+namespace light_sampling_test {
 
 struct Built {
   SceneDesc desc;
@@ -169,5 +169,5 @@ TEST(LightSampling, UniformEnvironmentIrradianceIsPiTimesRadiance) {
   check_light(*b, 0, {0, 0, 0});
 }
 
-}  // namespace
+}  // namespace light_sampling_test
 }  // namespace nimbus

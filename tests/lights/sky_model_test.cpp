@@ -14,7 +14,7 @@
 #include "lights/sky_model.hpp"
 
 namespace nimbus {
-namespace {
+namespace sky_model_test {
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -124,5 +124,5 @@ TEST(PreethamSky, SkyIsPerezDistributedWithAppendixA1) {
   RecordProperty("worst_relative_error", std::to_string(worst));
 }
 
-}  // namespace
+}  // namespace sky_model_test
 }  // namespace nimbus

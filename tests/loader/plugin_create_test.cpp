@@ -5,7 +5,7 @@
 #include "plugin_test_support.hpp"
 
 namespace nimbus {
-namespace {
+namespace plugin_create_test {
 using test::fixture_dir;
 using Events = std::vector<std::string>;
 
@@ -113,5 +113,5 @@ TEST_F(PluginCreate, NothingIsCreatedAfterDeinitAll) {
   EXPECT_EQ(deinits, 1u);
 }
 
-}  // namespace
+}  // namespace plugin_create_test
 }  // namespace nimbus

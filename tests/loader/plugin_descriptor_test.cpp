@@ -5,7 +5,7 @@
 #include "plugin_test_support.hpp"
 
 namespace nimbus {
-namespace {
+namespace plugin_descriptor_test {
 
 const char *const kFeatures[] = {"progressive", "lightmix", nullptr};
 const char *const kRequires[] = {"nimbus.host.film@1", nullptr};
@@ -140,5 +140,5 @@ TEST(PluginDescriptor, KindNames) {
   EXPECT_EQ(kind_with_article(NIMBUS_KIND_LIGHT_SAMPLER), "a light-sampler");
 }
 
-}  // namespace
+}  // namespace plugin_descriptor_test
 }  // namespace nimbus

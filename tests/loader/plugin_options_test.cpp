@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace nimbus {
-namespace {
+namespace plugin_options_test {
 
 const char *const kModes[] = {"fast", "exact", nullptr};
 
@@ -113,5 +113,5 @@ TEST(PluginOptions, UnknownOptionsAndBadValuesNameWhereAndThePlugin) {
             std::string::npos);
 }
 
-}  // namespace
+}  // namespace plugin_options_test
 }  // namespace nimbus

@@ -8,7 +8,7 @@
 #include "plugin_test_support.hpp"
 
 namespace nimbus {
-namespace {
+namespace plugin_registry_test {
 namespace fs = std::filesystem;
 using test::fixture_dir;
 using test::fixture_lib;
@@ -350,5 +350,5 @@ TEST(PluginRegistryLog, DefaultSinkWritesWarningsToStderr) {
                 "not provide\n");
 }
 
-}  // namespace
+}  // namespace plugin_registry_test
 }  // namespace nimbus

@@ -7,7 +7,7 @@
 #include "plugin_test_support.hpp"
 
 namespace nimbus {
-namespace {
+namespace plugin_search_paths_test {
 namespace fs = std::filesystem;
 using test::ScratchDir;
 
@@ -95,5 +95,5 @@ TEST(PluginSearchPaths, InstallDirectoryIsLastWhenPresent) {
   }
 }
 
-}  // namespace
+}  // namespace plugin_search_paths_test
 }  // namespace nimbus

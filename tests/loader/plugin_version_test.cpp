@@ -5,7 +5,7 @@
 #include "loader/plugin_version.hpp"
 
 namespace nimbus {
-namespace {
+namespace plugin_version_test {
 
 nimbus_version_t v(uint16_t major, uint16_t minor, uint16_t patch) { return {major, minor, patch, 0}; }
 
@@ -75,5 +75,5 @@ TEST(PluginVersion, HostAbiIsTheHeadersVersion) {
   EXPECT_EQ(kHostAbi.patch, NIMBUS_ABI_PATCH);
 }
 
-}  // namespace
+}  // namespace plugin_version_test
 }  // namespace nimbus

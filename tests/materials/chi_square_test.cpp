@@ -11,7 +11,7 @@
 #include "test_helpers.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace chi_square_test_file {
 
 struct Chi2Case {
   NamedBsdf material;
@@ -131,5 +131,5 @@ TEST(ChiSquareHarness, RejectsSlightlyWrongRoughness) {
   EXPECT_TRUE(rejected(r)) << r.describe();
 }
 
-}  // namespace
+}  // namespace chi_square_test_file
 }  // namespace nimbus::test

@@ -8,7 +8,7 @@
 #include "test_helpers.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace consistency_test {
 
 constexpr float kAngles[] = {0, 10, 30, 60, 80, 89, 89.9f, 180, 150, 120, 100, 91, 90.1f};
 
@@ -97,5 +97,5 @@ TEST_P(SampleConsistency, MatchesEvalAndPdf) {
 INSTANTIATE_TEST_SUITE_P(All, SampleConsistency, ::testing::ValuesIn(materials()),
                          [](const auto &info) { return sanitize_name(info.param.name); });
 
-}  // namespace
+}  // namespace consistency_test
 }  // namespace nimbus::test

@@ -11,7 +11,7 @@
 #include "test_helpers.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace energy_test {
 
 constexpr float kAngles[] = {0, 30, 60, 80, 89, 180, 150, 120, 100, 91};
 
@@ -185,5 +185,5 @@ TEST(Albedo, IsDeterministicAndInRange) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(w[c], a[c], 1e-6);
 }
 
-}  // namespace
+}  // namespace energy_test
 }  // namespace nimbus::test

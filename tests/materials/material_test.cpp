@@ -6,7 +6,7 @@
 #include "scene/scene_desc.hpp"
 
 namespace nimbus {
-namespace {
+namespace material_test {
 
 const Vec3f kUp(0, 0, 1);
 
@@ -67,5 +67,5 @@ TEST(MakeBsdf, Dielectric) {
   EXPECT_EQ(odd.lobes(), NIMBUS_LOBE_TRANSMISSION | NIMBUS_LOBE_SPECULAR);
 }
 
-}  // namespace
+}  // namespace material_test
 }  // namespace nimbus

@@ -10,7 +10,7 @@
 #include "test_helpers.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace robustness_test {
 
 // Relative closeness, with an absolute floor far below any value that could show in an image: at the
 // edge of a lobe's support one direction may round to "just valid" and the other to "just invalid".
@@ -220,5 +220,5 @@ TEST(Lobes, DescribeEachMaterial) {
   EXPECT_EQ(dielectric_case(1.0f, 0.2f).bsdf.min_alpha(), 0);
 }
 
-}  // namespace
+}  // namespace robustness_test
 }  // namespace nimbus::test

@@ -11,7 +11,7 @@
 #include "test_helpers.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scattering_test {
 
 TEST(Fresnel, DielectricClosedForms) {
   for (float eta : {1.0001f, 1.33f, 1.5f, 2.4f, 4.0f}) {
@@ -166,5 +166,5 @@ TEST(TrowbridgeReitz, RoughnessToAlpha) {
   EXPECT_EQ(TrowbridgeReitz::roughness_to_alpha(std::nanf("")), 0);
 }
 
-}  // namespace
+}  // namespace scattering_test
 }  // namespace nimbus::test

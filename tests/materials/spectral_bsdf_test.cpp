@@ -17,7 +17,7 @@
 #include "test_helpers.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace spectral_bsdf_test {
 
 // A dense flint (n_d 1.8, V_d 25): n runs from 1.852 at 400 nm to 1.786 at 700 nm, ten times the spread
 // the tolerances below resolve, so a glass that ignored lambda fails.
@@ -244,5 +244,5 @@ TEST(SpectralMaterials, RgbBsdfOfADispersiveGlassIsTheConstantOne) {
   }
 }
 
-}  // namespace
+}  // namespace spectral_bsdf_test
 }  // namespace nimbus::test

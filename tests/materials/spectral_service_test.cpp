@@ -18,7 +18,7 @@
 #include "world/world.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace spectral_service_test {
 
 // A scene's world behind a host handle, and the two BSDF services on it.
 class SpectralHarness {
@@ -229,5 +229,5 @@ TEST(SpectralService, TexturedMaterialsAtOneWavelength) {
   EXPECT_GT(std::abs(h.eval("frosted", wo, wi, 420) / h.eval("frosted", wo, wi, 680) - 1), 1e-2f);
 }
 
-}  // namespace
+}  // namespace spectral_service_test
 }  // namespace nimbus::test

@@ -11,7 +11,7 @@
 #include "scene/scene_parser.hpp"
 
 namespace nimbus {
-namespace {
+namespace render_job_test {
 
 SceneDesc parse(const std::string &yaml) {
   auto scene = parse_scene_string(yaml, "job.yaml");
@@ -121,5 +121,5 @@ TEST(RenderJob, FingerprintCoversIncludedFilesAndMeshes) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace render_job_test
 }  // namespace nimbus

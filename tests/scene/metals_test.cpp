@@ -15,7 +15,7 @@
 #include "scene/metals.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace metals_test {
 
 template <size_t N>
 double interpolate(const double (&values)[N], double lambda) {
@@ -67,5 +67,5 @@ TEST(Metals, PresetsAreTheMeasuredSpectraProjectedOntoRec709) {
   EXPECT_EQ(kMetals.size(), std::size(cases)) << "a preset without its measured spectrum here";
 }
 
-}  // namespace
+}  // namespace metals_test
 }  // namespace nimbus::test

@@ -7,7 +7,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_dispersion_test {
 
 const std::string kHead = "materials:\n  g:\n    type: dielectric\n";
 
@@ -123,5 +123,5 @@ TEST(SceneDispersionErrors, UnusableCurvesAtTheirKey) {
                        "must be finite and above 1"));
 }
 
-}  // namespace
+}  // namespace scene_dispersion_test
 }  // namespace nimbus::test

@@ -4,7 +4,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_environment_test {
 
 TEST(SceneEnvironment, NoneByDefault) {
   EXPECT_EQ(parse_ok("render: { seed: 1 }\n").environment.type, EnvironmentType::None);
@@ -110,5 +110,5 @@ TEST(SceneEnvironmentErrors, SkySun) {
                4, 14, "environment", "there are 2 (at test.yaml:2:5 and test.yaml:3:5)"));
 }
 
-}  // namespace
+}  // namespace scene_environment_test
 }  // namespace nimbus::test

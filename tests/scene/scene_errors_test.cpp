@@ -4,7 +4,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_errors_test {
 
 // Lines 1-2 of most object tests, so that `objects:` is line 3 and the first object starts at 4:5.
 const std::string kWhite = "materials:\n  white: { type: diffuse }\n";
@@ -330,5 +330,5 @@ TEST(SceneErrors, ObjFaceIndexOutOfRange) {
                        "objects[0].file", "face 1 refers to vertex 9 but the file has 3"));
 }
 
-}  // namespace
+}  // namespace scene_errors_test
 }  // namespace nimbus::test

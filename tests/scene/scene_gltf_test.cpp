@@ -8,7 +8,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_gltf_test {
 
 std::string base64(const std::vector<unsigned char> &bytes) {
   static const char *digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -278,5 +278,5 @@ TEST(SceneGltfErrors, MalformedFiles) {
                        "cannot load mesh '" + missing + "': No such file or directory"));
 }
 
-}  // namespace
+}  // namespace scene_gltf_test
 }  // namespace nimbus::test

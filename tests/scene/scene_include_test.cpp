@@ -5,7 +5,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_include_test {
 
 const std::string kQuadObj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
 
@@ -116,5 +116,5 @@ TEST(SceneIncludeErrors, IncludeMustNameFiles) {
   EXPECT_TRUE(fails_at("include: { file: a.yaml }\n", 1, 10, "include", "expected a sequence, got a map"));
 }
 
-}  // namespace
+}  // namespace scene_include_test
 }  // namespace nimbus::test

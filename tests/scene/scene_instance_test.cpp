@@ -6,7 +6,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_instance_test {
 
 const std::string kTwoMaterials =
     "materials:\n  white: { type: diffuse }\n  red: { type: diffuse, albedo: [1, 0, 0] }\n";
@@ -87,5 +87,5 @@ TEST(SceneInstanceErrors, MeshDefinedTwiceAcrossFiles) {
                        "mesh 'tri' is already defined at " + main + ":2:3"));
 }
 
-}  // namespace
+}  // namespace scene_instance_test
 }  // namespace nimbus::test

@@ -7,7 +7,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_lights_test {
 
 // By value: callers pass the temporary scene of parse_ok.
 LightDesc only_light(const SceneDesc &scene) {
@@ -139,5 +139,5 @@ TEST(SceneLightErrors, SunKeys) {
                        "lights[0].power", "unknown key 'power' for a sun light"));
 }
 
-}  // namespace
+}  // namespace scene_lights_test
 }  // namespace nimbus::test

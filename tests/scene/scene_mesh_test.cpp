@@ -6,7 +6,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_mesh_test {
 
 std::string mesh_object(const std::string &file, const std::string &extra = "") {
   return "materials: { white: { type: diffuse } }\nobjects:\n  - { shape: mesh, material: white, file: " +
@@ -87,5 +87,5 @@ TEST(SceneMesh, ObjCannotBeCombinedWithInlineArrays) {
                        "objects[0].indices", "cannot be combined with 'file'"));
 }
 
-}  // namespace
+}  // namespace scene_mesh_test
 }  // namespace nimbus::test

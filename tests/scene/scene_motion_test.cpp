@@ -5,7 +5,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_motion_test {
 
 // Lines 1-3: a shutter over [0, 1], the material; `objects:` is line 4 and the object starts at 5:5.
 const std::string kHead =
@@ -95,11 +95,11 @@ TEST(SceneMotion, DeformationStepsAndTheirMistakes) {
                4, 111, "objects[0].deform", "give it a close time"));
 }
 
-}  // namespace
+}  // namespace scene_motion_test
 }  // namespace nimbus::test
 
 namespace nimbus::test {
-namespace {
+namespace scene_motion_test {
 
 TEST(SceneMotion, CameraAndLightsMoveRigidly) {
   const SceneDesc scene = parse_ok(
@@ -139,5 +139,5 @@ TEST(SceneMotion, CameraAndLightMistakesAreNamedWhereTheyAre) {
                        "lights[0].motion", "unknown key"));
 }
 
-}  // namespace
+}  // namespace scene_motion_test
 }  // namespace nimbus::test

@@ -7,7 +7,7 @@
 #include "obj_material_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_obj_material_errors_test {
 
 // The error of a one-triangle object whose m.mtl holds `mtl`, reported at its `file:` (line 3, column 26).
 ::testing::AssertionResult mtl_fails(const std::string &mtl, const std::string &contains) {
@@ -133,5 +133,5 @@ TEST(SceneObjMaterialErrors, AnEmittingMtlMaterialCannotMoveOrDeform) {
       column, "objects[0].deform", "an emitting mesh cannot deform yet: its .mtl material 'm' emits (Ke)"));
 }
 
-}  // namespace
+}  // namespace scene_obj_material_errors_test
 }  // namespace nimbus::test

@@ -12,7 +12,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_obj_material_render_test {
 
 using nimbus::testing::region_mean;
 
@@ -58,5 +58,5 @@ TEST(SceneObjMaterialRender, TheCliRendersTheFixtureAndWarnsOnce) {
                        "sharpness\n");
 }
 
-}  // namespace
+}  // namespace scene_obj_material_render_test
 }  // namespace nimbus::test

@@ -9,7 +9,7 @@
 #include "obj_material_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_obj_material_test {
 
 // The one material of the one-triangle scene.
 MaterialDesc mapped(const std::string &mtl) {
@@ -248,5 +248,5 @@ TEST(SceneObjMaterial, SubdivisionSurfacesIgnoreMaterials) {
   EXPECT_TRUE(scene.warnings.empty());
 }
 
-}  // namespace
+}  // namespace scene_obj_material_test
 }  // namespace nimbus::test

@@ -4,7 +4,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_render_test {
 
 TEST(SceneRender, FilterRegionSamplerAndTargetError) {
   const SceneDesc scene = parse_ok(R"(render:
@@ -75,5 +75,5 @@ TEST(SceneRenderErrors, EmptyLightSampler) {
       fails_at("render:\n  light_sampler: \"\"\n", 2, 18, "render.light_sampler", "must not be empty"));
 }
 
-}  // namespace
+}  // namespace scene_render_test
 }  // namespace nimbus::test

@@ -7,7 +7,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_sources_test {
 
 const std::string kQuadObj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
 const std::string kCubeCage =
@@ -90,5 +90,5 @@ TEST(SceneSources, SceneTextComesFirstUnderItsDisplayName) {
   EXPECT_EQ(scene->sources[0].hash, content_hash(text));
 }
 
-}  // namespace
+}  // namespace scene_sources_test
 }  // namespace nimbus::test

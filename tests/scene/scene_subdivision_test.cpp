@@ -8,7 +8,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_subdivision_test {
 
 // The unit cube centred at the origin, faces counter-clockwise seen from outside.
 const std::string kCubePositions =
@@ -252,5 +252,5 @@ TEST(SceneSubdivisionErrors, CageFile) {
                        "objects[0].faces", "cannot be combined with 'file'"));
 }
 
-}  // namespace
+}  // namespace scene_subdivision_test
 }  // namespace nimbus::test

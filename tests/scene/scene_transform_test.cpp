@@ -6,7 +6,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_transform_test {
 
 void expect_vec(const Vec3f &actual, const Vec3f &expected, float tolerance = 1e-5f) {
   EXPECT_NEAR(actual.x, expected.x, tolerance) << "x";
@@ -158,5 +158,5 @@ TEST(SceneTransform, MeshNormalsUseTheInverseTranspose) {
   expect_vec(mesh.mesh.positions[1], {2, 0, 0});
 }
 
-}  // namespace
+}  // namespace scene_transform_test
 }  // namespace nimbus::test

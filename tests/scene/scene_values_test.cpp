@@ -5,7 +5,7 @@
 #include "scene_test_support.hpp"
 
 namespace nimbus::test {
-namespace {
+namespace scene_values_test {
 
 TEST(SceneValues, EmptySceneUsesDefaults) {
   for (const char *text : {"", "# only a comment\n", "render:\ncamera:\nmaterials:\nobjects:\nlights:\n"}) {
@@ -204,5 +204,5 @@ objects:
   EXPECT_FLOAT_EQ(mesh.uvs[2].y, 1);
 }
 
-}  // namespace
+}  // namespace scene_values_test
 }  // namespace nimbus::test

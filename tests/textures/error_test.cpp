@@ -14,7 +14,7 @@
 #include "world/world.hpp"
 
 namespace nimbus {
-namespace {
+namespace error_test {
 
 using texture_test::has_substr;
 using texture_test::ScratchDir;
@@ -204,5 +204,5 @@ TEST(TextureSyntax, FormsAndRelativePaths) {
   EXPECT_EQ(c.roughness, 0.2f);
 }
 
-}  // namespace
+}  // namespace error_test
 }  // namespace nimbus

@@ -10,7 +10,7 @@
 #include "texture_fixtures.hpp"
 
 namespace nimbus {
-namespace {
+namespace lookup_test {
 
 using texture_test::ScratchDir;
 using texture_test::srgb8_to_linear;
@@ -231,5 +231,5 @@ TEST(TexturedMaterials, NothingIsOpenedWithoutTextures) {
   EXPECT_EQ(built.value(), nullptr);
 }
 
-}  // namespace
+}  // namespace lookup_test
 }  // namespace nimbus

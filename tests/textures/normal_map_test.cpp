@@ -11,7 +11,7 @@
 #include "texture_fixtures.hpp"
 
 namespace nimbus {
-namespace {
+namespace normal_map_test {
 
 using texture_test::ScratchDir;
 using texture_test::texture_at;
@@ -144,5 +144,5 @@ TEST_F(NormalMapFile, TiltedMapRotatesNsByItsAngle) {
   EXPECT_NEAR(n.x, 0, 1e-6f);
 }
 
-}  // namespace
+}  // namespace normal_map_test
 }  // namespace nimbus

@@ -11,7 +11,7 @@
 #include "world/world.hpp"
 
 namespace nimbus {
-namespace {
+namespace render_test {
 
 using testing::region_mean;
 using testing::RenderRequest;
@@ -170,5 +170,5 @@ TEST(TexturedRender, UntexturedSceneOpensNoTextureSystem) {
   EXPECT_EQ(world.value()->textures, nullptr);
 }
 
-}  // namespace
+}  // namespace render_test
 }  // namespace nimbus

@@ -5,7 +5,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace albedo_element_test {
 
 const char *kBox = R"(
 render: { resolution: [32, 32], seed: 3, max_depth: 6 }
@@ -51,5 +51,5 @@ TEST_P(AlbedoElement, IsTheFirstRoughSurfacesAlbedoAndLeavesBeautyAlone) {
 
 INSTANTIATE_TEST_SUITE_P(Integrators, AlbedoElement, ::testing::Values("nimbus.pt", "nimbus.caustics"));
 
-}  // namespace
+}  // namespace albedo_element_test
 }  // namespace nimbus::testing

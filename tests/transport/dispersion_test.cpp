@@ -16,7 +16,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace dispersion_test {
 
 RenderRequest request(const std::string &integrator, uint64_t iterations, uint64_t seed) {
   RenderRequest req;
@@ -195,5 +195,5 @@ TEST(Dispersion, ConstantIndexGlassRendersAsBefore) {
   }
 }
 
-}  // namespace
+}  // namespace dispersion_test
 }  // namespace nimbus::testing

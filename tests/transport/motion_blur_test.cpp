@@ -13,7 +13,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace motion_blur_test {
 
 // A dark box over a lit floor, seen from above; `box` is the box's placement (transform or motion).
 std::string scene(const std::string &box, const std::string &shutter) {
@@ -202,5 +202,5 @@ TEST(MotionBlur, NothingMovesNoTimeIsDrawn) {
   EXPECT_EQ(plain.layers.at("beauty").data, shuttered.layers.at("beauty").data);
 }
 
-}  // namespace
+}  // namespace motion_blur_test
 }  // namespace nimbus::testing

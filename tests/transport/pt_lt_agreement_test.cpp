@@ -8,7 +8,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace pt_lt_agreement_test {
 
 const char *kDiffuseCornell = R"(
 render: { resolution: [24, 24], seed: 3, max_depth: 6 }
@@ -55,5 +55,5 @@ TEST(PtLtAgreement, DifferenceFallsAsOneOverIterations) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(mpt[c] / mlt[c], 1.0, 0.01) << "channel " << c;
 }
 
-}  // namespace
+}  // namespace pt_lt_agreement_test
 }  // namespace nimbus::testing

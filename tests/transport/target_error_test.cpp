@@ -7,7 +7,7 @@
 #include "support/render_support.hpp"
 
 namespace nimbus::testing {
-namespace {
+namespace target_error_test {
 
 const char *kScene = R"(
 render: { resolution: [32, 32], seed: 3, max_depth: 6 }
@@ -71,5 +71,5 @@ TEST(TargetError, NoHalfBuffersWithoutATarget) {
   EXPECT_EQ(img.strings.at("nimbus:stopped_by"), "iterations");
 }
 
-}  // namespace
+}  // namespace target_error_test
 }  // namespace nimbus::testing

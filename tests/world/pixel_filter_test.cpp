@@ -7,7 +7,7 @@
 #include "world/pixel_filter.hpp"
 
 namespace nimbus {
-namespace {
+namespace pixel_filter_test {
 
 class PixelFilterTest : public ::testing::TestWithParam<FilterType> {};
 
@@ -48,5 +48,5 @@ INSTANTIATE_TEST_SUITE_P(Filters, PixelFilterTest,
                          ::testing::Values(FilterType::Box, FilterType::Gaussian,
                                            FilterType::BlackmanHarris));
 
-}  // namespace
+}  // namespace pixel_filter_test
 }  // namespace nimbus

@@ -11,7 +11,7 @@
 #include "world/world.hpp"
 
 namespace nimbus {
-namespace {
+namespace sharp_bounds_test {
 
 const char *kScene = R"(
 camera: { position: [0, -5, 1], look_at: [0, 0, 0.5] }
@@ -101,5 +101,5 @@ lights: [ { type: point, position: [0, 0, 3], intensity: [1, 1, 1] } ]
   EXPECT_TRUE(world.value()->sharp_objects.empty());
 }
 
-}  // namespace
+}  // namespace sharp_bounds_test
 }  // namespace nimbus
