@@ -154,7 +154,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
         return s;
       stats_.pass_done(result, pass_.map(),
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      useful_.map_changed();
+      useful_.map_changed(!(guide_ && !pass_importance_.empty()));  // a guided map's halves are dependent
       schedule_.pass_done(iteration, result.traced, pass_.map().size());
     }
     map_active_ = schedule_.map_active();
@@ -190,7 +190,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       rec.merge.store(a);
       services().film->accumulate(host().get(), &ctx, merge_id_, x, y, a);
     }
-    if (armed_) useful_.add(size_t(y) * width_ + x, rec.beauty, rec.merge, rec.lookup_moment);
+    if (armed_) useful_.add(size_t(y) * width_ + x, rec);
   }
 
   nimbus_status_t end_iteration(uint64_t frame_iteration) override {
@@ -390,7 +390,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   UsefulPixels useful_;
   PixelRadius pixel_radius_;
   LookupRoulette roulette_;
-  static constexpr uint32_t kStateVersion = 6;  // the format of save_state's bytes
+  static constexpr uint32_t kStateVersion = 7;  // the format of save_state's bytes
   SolverStats stats_;
 };
 

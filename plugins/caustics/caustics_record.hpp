@@ -19,11 +19,16 @@ struct CausticsRecord : sdk::SampleRecord {
   // Per class of lookup, the sum of q Y^2 over the sample's lookups (Y: the luminance one added), the
   // lookup roulette's measure of what the class's merges carry.
   std::array<float, kLookupClasses> lookup_moment{};
+  // Luminance of the merged light from photons of even-numbered paths minus that from odd-numbered ones:
+  // the two halves of a map are independent, so its square estimates the photon noise of `merge`
+  // (useful_pixels.hpp).
+  float merge_split = 0;
 
   void reset() {
     SampleRecord::reset();
     merge = Rgb(0);
     lookup_moment = {};
+    merge_split = 0;
   }
 
   // A photon-map merge contribution: always caustic light.

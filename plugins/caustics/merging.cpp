@@ -46,7 +46,8 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
   // the first photon found: most lookups find none (query() turns them away first).
   uint32_t ng_code = 0;
   bool ng_encoded = false;
-  Rgb sum(0);  // the lookup's light (without LightMix, one record entry per lookup)
+  Rgb sum(0);    // the lookup's light (without LightMix, one record entry per lookup)
+  Rgb split(0);  // the same from even-numbered photon paths minus odd-numbered ones
   const uint32_t leaves = mc.map->query(Vec3f::load(ix.p), r, [&](const PhotonData &ph, float d2) {
     const uint32_t k = s + ph.depth();
     if (k > mc.max_depth) return;
@@ -73,11 +74,14 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     const float kernel = kernel_norm * (1 - d2 / r2) * in_time;
     const Rgb c = fr * power * (w * kernel);
     if (!is_finite(c) || is_black(c)) return;
-    if (mc.path_use) mc.path_use->mark(mc.map->path_of(ph));
+    const uint32_t path = mc.map->path_of(ph);
+    if (mc.path_use) mc.path_use->mark(path);
     if (mc.ids.lightmix) rec.add_merge(beta * c * inv_paths, (*mc.light_group)[ph.light()], mc.ids);
     sum += c;
+    split += path & 1u ? -c : c;
   });
   if (is_black(sum)) return {leaves, evaluated, 0.0f, density_count};
+  rec.merge_split += luminance(beta * split * inv_paths);
   const Rgb light = beta * sum * inv_paths;
   if (!mc.ids.lightmix) rec.add_merge(light, 0, mc.ids);
   return {leaves, evaluated, luminance(light), density_count};

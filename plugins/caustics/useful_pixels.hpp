@@ -6,6 +6,11 @@
 // each pixel has two or more samples under one map: their spread is the merges' camera-side variance
 // (which only camera samples reduce), and the spread of the per-map means beyond it is the photon noise.
 // Half the squared difference of consecutive maps' means estimates Var(mean) = V_photon + V_within / n.
+// Until a pixel has seen two maps, a map whose paths are independent (unguided passes: the probe, and
+// every pass without a guide) estimates its own photon noise from its two halves, the photons of
+// even-numbered and odd-numbered paths: given the camera samples, the merge mean is the sum of the two
+// halves' independent estimates, whose difference has the same variance. So the budget measures from
+// the first map on, rather than pricing a second blind pass.
 // Each class of lookup's second moment (lookup_roulette.hpp) is kept on the same window and weights.
 #pragma once
 
@@ -39,38 +44,48 @@ class UsefulPixels {
   };
 
   // [main-thread] Zeroes the sums of a width x height image (0: none kept).
-  void reset(size_t pixels) { sums_.assign(pixels, Sums{}); }
+  void reset(size_t pixels) { sums_.assign(pixels, Sums{}), halves_independent_ = false; }
 
   // [main-thread] Every pixel's sums, for a resumed render; restore changes nothing unless it reads the
   // sums of exactly this many pixels.
   template <class Writer>
   void save(Writer &w) const {
-    w.put_array(std::span<const Sums>(sums_));
+    w.put_array(std::span<const Sums>(sums_)), w.put(uint8_t(halves_independent_));
   }
   template <class Reader>
   bool restore(Reader &r) {
     std::vector<Sums> sums;
-    if (!r.get_array(sums, sums_.size())) return false;
-    sums_ = std::move(sums);
+    uint8_t halves = 0;
+    if (!r.get_array(sums, sums_.size()) || !r.get(halves)) return false;
+    sums_ = std::move(sums), halves_independent_ = halves != 0;
     return true;
   }
 
   // [render-thread] One sample of pixel i (each pixel belongs to one tile, so no two threads meet);
   // moment: per class of lookup, the sum over its lookups of q Y^2 (Y the luminance a lookup added).
-  void add(size_t i, const Rgb &beauty, const Rgb &merged, const std::array<float, kLookupClasses> &moment) {
+  // A record's sample (beauty, merge, lookup_moment, merge_split: caustics_record.hpp).
+  template <class Record>
+  void add(size_t i, const Record &r) {
+    add(i, r.beauty, r.merge, r.lookup_moment, r.merge_split);
+  }
+  // split: luminance of the merges of even-numbered photon paths minus odd-numbered ones.
+  void add(size_t i, const Rgb &beauty, const Rgb &merged, const std::array<float, kLookupClasses> &moment,
+           float split = 0) {
     const float b = luminance(beauty), m = luminance(merged), c = b - m;
     Sums &s = sums_[i];
     s.n += 1, s.total += b, s.merge += m, s.camera2 += c * c;
     for (uint32_t k = 0; k < kLookupClasses; ++k) s.moment[k] += moment[k];
-    s.map_n += 1, s.map_merge += m, s.map_merge2 += m * m;
+    s.map_n += 1, s.map_merge += m, s.map_merge2 += m * m, s.map_split += split;
   }
 
   // [main-thread] A new photon map replaces the current one: each pixel's merge mean under the old map
-  // is compared with the one before it.
-  void map_changed() {
+  // is compared with the one before it. halves_independent: the new map's paths are independent (an
+  // unguided pass), so its halves measure its photon noise.
+  void map_changed(bool halves_independent = false) {
+    halves_independent_ = halves_independent;
     for (Sums &s : sums_) {
       if (!(s.map_n > 1)) {
-        s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0;
+        s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0, s.map_split = 0;
         continue;
       }
       const float mean = s.map_merge / s.map_n;
@@ -83,7 +98,7 @@ class UsefulPixels {
         s.has_between = 1;
       }
       s.previous = mean, s.has_previous = 1;
-      s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0;
+      s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0, s.map_split = 0;
     }
   }
 
@@ -93,14 +108,21 @@ class UsefulPixels {
   Summary summarize(uint64_t pixels, double iterations_per_map) {
     Summary out;
     uint64_t useful = 0;
+    double samples = 0;  // the window's (decayed) sample counts
     for (Sums &s : sums_) {
       if (s.n > 0) {
+        samples += s.n;
         useful += s.merge > float(kIdleThreshold) * s.total ? 1 : 0;
         const double n = s.n, mean_t = s.total / n, mean_c = mean_t - s.merge / n;
         const double weight = 1 / (mean_t * mean_t + kRelativeOffset);
         // A map's photon noise is shared by the k iterations it serves: k times that of one iteration's
         // own map. The merges' camera-side variance counts with the rest (camera samples reduce it).
-        if (s.has_between) out.v_merge += double(s.between) * iterations_per_map * weight;
+        if (s.has_between) {
+          out.v_merge += double(s.between) * iterations_per_map * weight;
+        } else if (halves_independent_ && s.map_n > 0) {
+          const double half_difference = s.map_split / s.map_n;
+          out.v_merge += half_difference * half_difference * iterations_per_map * weight;
+        }
         out.v_camera += (std::max(0.0, s.camera2 / n - mean_c * mean_c) + double(s.within)) * weight;
         for (uint32_t k = 0; k < kLookupClasses; ++k) out.second_moment[k] += s.moment[k] / n * weight;
       }
@@ -111,6 +133,9 @@ class UsefulPixels {
       out.useful = std::min(1.0, double(useful) / double(pixels));
       out.v_merge /= double(pixels), out.v_camera /= double(pixels);
       for (double &m : out.second_moment) m /= double(pixels);
+      // One sample has no spread: the merges' variance is unmeasured until the window holds two per
+      // pixel (one of them decayed), which the split of a map's halves would otherwise price alone.
+      if (samples < 1.5 * double(pixels)) out.v_merge = 0;
     }
     return out;
   }
@@ -121,12 +146,14 @@ class UsefulPixels {
     float n = 0, total = 0, merge = 0, camera2 = 0;  // the window's samples
     float moment[kLookupClasses] = {0, 0};           // the window's lookup second moments
     float map_n = 0, map_merge = 0, map_merge2 = 0;  // the current map's samples
+    float map_split = 0;                             // and their merges' half difference (see the top)
     float previous = 0;                              // the previous map's merge mean
     float between = 0, within = 0;                   // photon variance of a map; merges' sample variance
     uint8_t has_previous = 0, has_between = 0, unused[2] = {0, 0};
   };
-  static_assert(sizeof(Sums) == (11 + kLookupClasses) * sizeof(float));
+  static_assert(sizeof(Sums) == (12 + kLookupClasses) * sizeof(float));
   std::vector<Sums> sums_;
+  bool halves_independent_ = false;  // the current map's (see map_changed)
 };
 
 }  // namespace nimbus::caustics

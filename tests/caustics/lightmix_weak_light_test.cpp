@@ -88,10 +88,10 @@ TEST_P(CausticsLightMix, WeakLightLayerConvergesLikeTheStrongOne) {
   };
   // The caustic of the strong light's ball (x ~ -0.5 m, beyond the ball seen from the light: pixel
   // columns 22-29 on the side where the strong layer is brighter there), the strong layer against the
-  // weak layer x 10^4 mirrored, over 4 seeds at 64 iterations; relMSE over the whole image.
+  // weak layer x 10^4 mirrored, over 8 seeds at 64 iterations; relMSE over the whole image.
   std::vector<double> strong, weak, err_few, err_many;
   std::vector<std::vector<double>> strong_images;
-  for (uint64_t seed = 1; seed <= 4; ++seed) {
+  for (uint64_t seed = 1; seed <= 8; ++seed) {
     const auto img = render(64, seed);
     const auto s = lum(img, "lightmix.strong", false, unit),
                w = lum(img, "lightmix.weak", true, kRatio * unit);
@@ -108,22 +108,22 @@ TEST_P(CausticsLightMix, WeakLightLayerConvergesLikeTheStrongOne) {
   const auto [mw, sew] = mean_and_se(weak);
   std::sort(err_few.begin(), err_few.end());
   std::sort(err_many.begin(), err_many.end());
-  const double few = 0.5 * (err_few[1] + err_few[2]), many = 0.5 * (err_many[1] + err_many[2]);
+  const double few = 0.5 * (err_few[3] + err_few[4]), many = 0.5 * (err_many[3] + err_many[4]);
   // The strong layer's own noise: relMSE between two of its renders (2 var_s).
   const double strong_noise = rel_mse(strong_images[0], strong_images[1]);
   std::printf(
       "ratio %.0e, strong caustic: strong layer %.5g (SE %.5g), weak layer x ratio mirrored %.5g (SE %.5g); "
-      "relMSE between them (median of 4) %.4g at 16 iterations, %.4g at 64; between two strong "
+      "relMSE between them (median of 8) %.4g at 16 iterations, %.4g at 64; between two strong "
       "renders %.4g\n",
       kRatio, ms, ses, mw, sew, few, many, strong_noise);
-  // 3 sigma of the difference of the two means (each over 4 seeds).
+  // 3 sigma of the difference of the two means (each over 8 seeds).
   EXPECT_NEAR(mw, ms, 3 * std::hypot(ses, sew));
   // The weak layer converges at the strong one's rate: NEE and photons choose the weak light with
   // probability 1/4 against 3/4 for the strong one, so var_w ~ 3 var_s and relMSE(weak, strong) = var_w +
   // var_s ~ 2x the strong-strong figure (2 var_s); 4x allows for the heavy tails of 64-iteration renders.
   EXPECT_LT(many, 4 * strong_noise);
-  // Both layers' noise falls as 1/iterations (4x here); 2x leaves room for the median of 4 renders and
-  // the photon map's slower start.
+  // Both layers' noise falls as 1/iterations (4x here); 2x leaves room for the photon map's slower start.
+  // Medians of 8 renders: with 4, one heavy-tailed render decides the figure (it ranges over 2-5x).
   EXPECT_GT(few / many, 2.0);
 }
 
