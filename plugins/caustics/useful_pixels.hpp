@@ -62,12 +62,7 @@ class UsefulPixels {
   }
 
   // [render-thread] One sample of pixel i (each pixel belongs to one tile, so no two threads meet);
-  // moment: per class of lookup, the sum over its lookups of q Y^2 (Y the luminance a lookup added).
-  // A record's sample (beauty, merge, lookup_moment, merge_split: caustics_record.hpp).
-  template <class Record>
-  void add(size_t i, const Record &r) {
-    add(i, r.beauty, r.merge, r.lookup_moment, r.merge_split);
-  }
+  // moment: per class of lookup, the sum over its lookups of q Y^2 (Y the luminance a lookup added);
   // split: luminance of the merges of even-numbered photon paths minus odd-numbered ones.
   void add(size_t i, const Rgb &beauty, const Rgb &merged, const std::array<float, kLookupClasses> &moment,
            float split = 0) {
@@ -76,6 +71,11 @@ class UsefulPixels {
     s.n += 1, s.total += b, s.merge += m, s.camera2 += c * c;
     for (uint32_t k = 0; k < kLookupClasses; ++k) s.moment[k] += moment[k];
     s.map_n += 1, s.map_merge += m, s.map_merge2 += m * m, s.map_split += split;
+  }
+  // [render-thread] The same from a sample record (caustics_record.hpp).
+  template <class Record>
+  void add(size_t i, const Record &r) {
+    add(i, r.beauty, r.merge, r.lookup_moment, r.merge_split);
   }
 
   // [main-thread] A new photon map replaces the current one: each pixel's merge mean under the old map
