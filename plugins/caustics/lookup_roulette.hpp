@@ -24,6 +24,14 @@ inline LookupClass lookup_class(uint32_t rough_count) {
   return rough_count <= 1 ? kFirstLookup : kLaterLookup;
 }
 
+// The merge technique's density in MIS at lookups behind the first rough vertex, besides q: a quarter.
+// Such a merge and the first rough vertex's merge of the same path have equal pdfs when the bounce
+// between them is diffuse, but the later one sees a caustic's peak through that bounce while the first
+// one's kernel averages it: with the pdfs alone the later merge keeps 1/(1 + q^2)-ish of the weight and a
+// dark wall's pixel takes a bright caustic's value (docs/performance.md section 9). Any factor shared by
+// every technique's weight keeps them a partition of unity; 1/4 measured best of what was tried.
+inline constexpr float kLaterLookupMisFactor = 0.25f;
+
 // The lowest lookup probability: the second moment is measured from the lookups that happen (q Y^2 per
 // lookup, an unbiased estimate at any q), and below this too few happen in a window to measure it.
 inline constexpr float kMinLookupProbability = 1.0f / 16;

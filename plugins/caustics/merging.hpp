@@ -84,13 +84,15 @@ struct LookupCost {
 };
 
 // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
-// q: the probability that the path looked up here (the merges count 1/q times, and the merge technique
-// has q times the photon density in their weights). neff: the effective photon count at x_s, times the
+// q: the probability that the path looked up here (the merges count 1/q times); q_mis: the merge
+// technique's factor on the photon density in the weights (q, and kLaterLookupMisFactor behind the
+// first rough vertex). neff: the effective photon count at x_s, times the
 // window's share rho of photon times. window: the photon times the lookup accepts (photon_windows.hpp).
 // lambda: the camera path's wavelength (0 while it carries RGB).
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
-                         float neff, const TimeWindow &window, float lambda, CausticsRecord &rec);
+                         float q_mis, float neff, const TimeWindow &window, float lambda,
+                         CausticsRecord &rec);
 
 // The effective photon count at x (spec 6.3): N_u, raised where the guide's chains aimed.
 inline float effective_photons(const MergeContext &mc, const Vec3f &x) {
@@ -160,6 +162,7 @@ class MergingPath {
     lookup_ = mis_.append(rough);
     const LookupClass cls = lookup_class(mis_.rough_count);
     q_ = mc_.lookup_probability[cls];
+    q_mis_ = q_ * (cls == kLaterLookup ? kLaterLookupMisFactor : 1.0f);
     if (lookup_) {
       // Photons of similar time only (spec 7.1): the window's share of photon times scales the merge
       // density like the lookup probability does.
@@ -175,8 +178,8 @@ class MergingPath {
     if (lookup_ && v.segments + 2 <= mc_.max_depth &&
         (q_ >= 1 || float(mix64(key_ ^ v.segments) >> 40) * 0x1p-24f < q_)) {
       radii_.add(radius_);
-      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, neff_,
-                                         window_, v.lambda, rec);
+      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, q_mis_,
+                                         neff_, window_, v.lambda, rec);
       tally_.lookup_work[cls] += c.work();
       rec.lookup_moment[cls] += q_ * c.light * c.light;
       if (cls == kFirstLookup) {
@@ -206,7 +209,7 @@ class MergingPath {
   void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
                uint32_t segments) {
     mis_.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup_, segments,
-                 kPi * Mis(radius_) * radius_ * Mis(neff_) * q_);
+                 kPi * Mis(radius_) * radius_ * Mis(neff_) * q_mis_);
   }
 
  private:
@@ -221,7 +224,8 @@ class MergingPath {
   float radius_ = 0;     // r_a: fixed at the first rough vertex, used by every lookup (spec 3.5)
   bool shrunk_ = false;  // r_a is below the schedule's radius (pixel_radius.hpp)
   uint64_t key_;         // the lookup roulette's draws: hashes of it and the vertex
-  float q_ = 1;          // lookup probability at the current vertex (its merge density's factor)
+  float q_ = 1;          // lookup probability at the current vertex (the merges count 1/q times)
+  float q_mis_ = 1;      // the merge density's factor in MIS there (q, times kLaterLookupMisFactor later)
   float neff_ = 0;       // effective photon count at the current lookup vertex (times window_.rho)
   TimeWindow window_;    // the photon times the current lookup accepts
   float length_ = 0;     // path length from the lens to the current vertex
