@@ -29,7 +29,7 @@ inline LookupClass lookup_class(uint32_t rough_count) {
 // between them is diffuse, but the later one sees a caustic's peak through that bounce while the first
 // one's kernel averages it: with the pdfs alone the later merge keeps 1/(1 + q^2)-ish of the weight and a
 // dark wall's pixel takes a bright caustic's value (docs/performance.md section 9). Any factor shared by
-// every technique's weight keeps them a partition of unity; 1/4 measured best of what was tried.
+// every technique's weight keeps them a partition of unity; 1/4 is measured there at equal time.
 inline constexpr float kLaterLookupMisFactor = 0.25f;
 
 // The lowest lookup probability: the second moment is measured from the lookups that happen (q Y^2 per
