@@ -154,7 +154,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
         return s;
       stats_.pass_done(result, pass_.map(),
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      useful_.map_changed(!(guide_ && !pass_importance_.empty()));  // a guided map's halves are dependent
+      useful_.map_changed(!result.guided);  // a guided map's halves are dependent
       schedule_.pass_done(iteration, result.traced, pass_.map().size());
     }
     map_active_ = schedule_.map_active();

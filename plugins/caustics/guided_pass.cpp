@@ -146,7 +146,7 @@ nimbus_status_t PhotonPass::run_guided(const PhotonTracer &tracer, const GuideBi
     }
     c.photons.resize(kept);
   });
-  result.paths = n_u;
+  result.paths = n_u, result.guided = true;
   result.importance_ratio = ratio;
   result.proposals = sum.proposals, result.accepted = sum.accepted;
   assemble(parallel, filter_reach, tracer);

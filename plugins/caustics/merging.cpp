@@ -26,9 +26,9 @@ bool photon_at_wavelength(const MergeContext &mc, float lambda_p, float lambda_c
 }  // namespace
 
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
-                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
-                         float q_mis, float neff, const TimeWindow &window, float lambda,
-                         CausticsRecord &rec) {
+                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, LookupClass cls,
+                         float neff, const TimeWindow &window, float lambda, CausticsRecord &rec) {
+  const float q = mc.lookup_probability[cls], q_mis = mc.lookup_mis_density(cls);
   uint32_t evaluated = 0;
   float density_count = 0;
   const float r2 = r * r;
@@ -37,8 +37,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
   const Mis m_neff = mis(Mis(neff) * q_mis), eta = mis(kPi * r2 * Mis(neff) * q_mis);
   // The merges at the photon's rough vertices (B) are lookups after the camera path's first rough vertex.
   // B carries each of its vertices' effective counts relative to N_u (guided_pass.cpp).
-  const Mis m_neff_b =
-      mis(Mis(mc.map_paths) * mc.lookup_probability[kLaterLookup] * kLaterLookupMisFactor * window.rho);
+  const Mis m_neff_b = mis(Mis(mc.map_paths) * mc.lookup_mis_density(kLaterLookup) * window.rho);
   const Vec3f ng = Vec3f::load(ix.ng);
   float wo_arr[3];
   wo.store(wo_arr);

@@ -52,6 +52,11 @@ struct MergeContext {
   float scene_radius = 1;
   // Lookup probability per class of rough vertex (lookup_roulette.hpp), set before each camera pass.
   std::array<float, kLookupClasses> lookup_probability{1.0f, 1.0f};
+  // The merge technique's factor on the photon density in MIS at a class of lookup vertex: its lookup
+  // probability, times kLaterLookupMisFactor behind the first rough vertex.
+  float lookup_mis_density(LookupClass c) const {
+    return lookup_probability[c] * (c == kLaterLookup ? kLaterLookupMisFactor : 1.0f);
+  }
 };
 
 // The most a photon of a rarely chosen light counts in a pixel's photon density.
@@ -84,15 +89,13 @@ struct LookupCost {
 };
 
 // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
-// q: the probability that the path looked up here (the merges count 1/q times); q_mis: the merge
-// technique's factor on the photon density in the weights (q, and kLaterLookupMisFactor behind the
-// first rough vertex). neff: the effective photon count at x_s, times the
-// window's share rho of photon times. window: the photon times the lookup accepts (photon_windows.hpp).
-// lambda: the camera path's wavelength (0 while it carries RGB).
+// cls: the class of lookup vertex, whose lookup probability q the merges count 1/q times and whose
+// MergeContext::lookup_mis_density scales the merge technique's density in the weights. neff: the
+// effective photon count at x_s, times the window's share rho of photon times. window: the photon times the
+// lookup accepts (photon_windows.hpp). lambda: the camera path's wavelength (0 while it carries RGB).
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
-                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, float q,
-                         float q_mis, float neff, const TimeWindow &window, float lambda,
-                         CausticsRecord &rec);
+                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, LookupClass cls,
+                         float neff, const TimeWindow &window, float lambda, CausticsRecord &rec);
 
 // The effective photon count at x (spec 6.3): N_u, raised where the guide's chains aimed.
 inline float effective_photons(const MergeContext &mc, const Vec3f &x) {
@@ -162,7 +165,7 @@ class MergingPath {
     lookup_ = mis_.append(rough);
     const LookupClass cls = lookup_class(mis_.rough_count);
     q_ = mc_.lookup_probability[cls];
-    q_mis_ = q_ * (cls == kLaterLookup ? kLaterLookupMisFactor : 1.0f);
+    q_mis_ = mc_.lookup_mis_density(cls);
     if (lookup_) {
       // Photons of similar time only (spec 7.1): the window's share of photon times scales the merge
       // density like the lookup probability does.
@@ -178,8 +181,8 @@ class MergingPath {
     if (lookup_ && v.segments + 2 <= mc_.max_depth &&
         (q_ >= 1 || float(mix64(key_ ^ v.segments) >> 40) * 0x1p-24f < q_)) {
       radii_.add(radius_);
-      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, q_, q_mis_,
-                                         neff_, window_, v.lambda, rec);
+      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, cls, neff_,
+                                         window_, v.lambda, rec);
       tally_.lookup_work[cls] += c.work();
       rec.lookup_moment[cls] += q_ * c.light * c.light;
       if (cls == kFirstLookup) {
@@ -225,7 +228,7 @@ class MergingPath {
   bool shrunk_ = false;  // r_a is below the schedule's radius (pixel_radius.hpp)
   uint64_t key_;         // the lookup roulette's draws: hashes of it and the vertex
   float q_ = 1;          // lookup probability at the current vertex (the merges count 1/q times)
-  float q_mis_ = 1;      // the merge density's factor in MIS there (q, times kLaterLookupMisFactor later)
+  float q_mis_ = 1;      // the merge density's factor in MIS there (MergeContext::lookup_mis_density)
   float neff_ = 0;       // effective photon count at the current lookup vertex (times window_.rho)
   TimeWindow window_;    // the photon times the current lookup accepts
   float length_ = 0;     // path length from the lens to the current vertex

@@ -60,6 +60,7 @@ class PhotonPass {
     // N_u (1 + c I(x)); 0 without guiding. Chain proposals and those that became a chain state.
     double importance_ratio = 0;
     uint64_t proposals = 0, accepted = 0;
+    bool guided = false;  // the paths came from the guide's Markov chains (not independent)
   };
 
   // [main-thread] Traces `paths` photon paths of pass `pass` (1-based) and rebuilds the map, with an
