@@ -13,7 +13,8 @@ caustics element. With REF, also each render's relMSE and the mean of their bias
 ((a + b) / 2 - r)^2 - var / 2, so relMSE ~ variance + bias^2. Images are read by nimbus_tools.read_rgb;
 --crop limits every figure to the pixels [X0, X1) x [Y0, Y1) (a
 caustic's region), and --covered-only (with REF) to the pixels a light-traced reference covers, as
-bench/error_vs_time.py's option of that name does. Not part of CI.
+bench/error_vs_time.py's option of that name does; --excluded MASK.exr leaves out a mask render's pixels
+as error_vs_time.py's --exclude-render does. Not part of CI.
 """
 import argparse
 
@@ -45,13 +46,18 @@ def main():
     ap.add_argument("--reference")
     ap.add_argument("--crop", help="X0,Y0,X1,Y1: pixels [X0, X1) x [Y0, Y1) only")
     ap.add_argument("--covered-only", action="store_true", help="only the pixels the reference covers")
+    ap.add_argument("--excluded", metavar="MASK.exr",
+                    help="leave out the pixels this image shows non-zero, and those within 2 of them "
+                         "(error_vs_time.py --exclude-render keeps its mask render as SCENE-excluded.exr)")
     args = ap.parse_args()
     if args.covered_only and not args.reference:
         ap.error("--covered-only needs --reference")
     crop = tuple(int(v) for v in args.crop.split(",")) if args.crop else None
-    if crop or args.covered_only:
+    if crop or args.covered_only or args.excluded:
         global PIXELS
-        PIXELS = region_mask(nimbus_tools.read_rgb(args.reference or args.a, "beauty"), args.covered_only, crop)
+        excluded = (nimbus_tools.read_rgb(args.excluded, "beauty") > 0).any(axis=-1) if args.excluded else None
+        PIXELS = region_mask(nimbus_tools.read_rgb(args.reference or args.a, "beauty"), args.covered_only, crop,
+                             excluded=excluded)
     a, b = read_rgb(args.a, "beauty"), read_rgb(args.b, "beauty")
     try:
         ca, cb = read_rgb(args.a, "caustics"), read_rgb(args.b, "caustics")
