@@ -69,6 +69,16 @@ def within_2(pixels, outside=False):
     return out
 
 
+def excluded_pixels(mask_exr, shape, scene):
+    """The pixels a mask render shows non-zero (rows x columns, True: left out); it must match the
+    scene's resolution, `shape`."""
+    excluded = (read_rgb(mask_exr) > 0).any(axis=-1)
+    if excluded.shape != shape:
+        raise SystemExit(f"{mask_exr}: {excluded.shape[1]}x{excluded.shape[0]} pixels, "
+                         f"{scene} {shape[1]}x{shape[0]}")
+    return excluded
+
+
 def region_mask(ref, covered_only, crop, brighter_than=None, excluded=None):
     """The pixels compared: all, or those --covered-only and --crop keep, less `excluded` (rows x
     columns, True: left out, with the pixels within 2 of them); with brighter_than F, only those of them
@@ -145,10 +155,7 @@ def main():
             mask_exr = os.path.join(args.out, f"{name}-excluded.exr")
             run([args.nimbus, "render", args.exclude_render, "-o", mask_exr, "--integrator", "pt",
                  "--iterations", "64", "--seed", "1", "-q"])
-            excluded = (read_rgb(mask_exr) > 0).any(axis=-1)
-            if excluded.shape != ref_image.shape[:2]:
-                raise SystemExit(f"{args.exclude_render}: renders {excluded.shape[1]}x{excluded.shape[0]} "
-                                 f"pixels, {scene} {ref_image.shape[1]}x{ref_image.shape[0]}")
+            excluded = excluded_pixels(mask_exr, ref_image.shape[:2], scene)
         mask = region_mask(ref_image, args.covered_only, crop, args.brighter_than, excluded)
         ref_var = 0.0
         if len(halves) == 2:

@@ -21,7 +21,7 @@ import argparse
 import numpy as np
 
 import nimbus_tools
-from error_vs_time import region_mask
+from error_vs_time import excluded_pixels, region_mask
 
 
 PIXELS = None  # boolean rows x columns mask of the pixels compared, or None: the whole image
@@ -55,9 +55,9 @@ def main():
     crop = tuple(int(v) for v in args.crop.split(",")) if args.crop else None
     if crop or args.covered_only or args.excluded:
         global PIXELS
-        excluded = (nimbus_tools.read_rgb(args.excluded, "beauty") > 0).any(axis=-1) if args.excluded else None
-        PIXELS = region_mask(nimbus_tools.read_rgb(args.reference or args.a, "beauty"), args.covered_only, crop,
-                             excluded=excluded)
+        frame = nimbus_tools.read_rgb(args.reference or args.a, "beauty")
+        excluded = excluded_pixels(args.excluded, frame.shape[:2], args.a) if args.excluded else None
+        PIXELS = region_mask(frame, args.covered_only, crop, excluded=excluded)
     a, b = read_rgb(args.a, "beauty"), read_rgb(args.b, "beauty")
     try:
         ca, cb = read_rgb(args.a, "caustics"), read_rgb(args.b, "caustics")

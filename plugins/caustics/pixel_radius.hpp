@@ -20,8 +20,8 @@
 namespace nimbus::caustics {
 
 // Photons a pixel's kernel should hold per lookup before it shrinks below the schedule's radius. Few: at a
-// caustic's edge the kernel's blur is most of the error, and inside a smooth caustic the extra photon
-// noise costs little of the image's (4 against 16 or 8: docs/performance.md section 5).
+// focus's edge the kernel's blur costs more than the photon noise a small kernel adds inside a smooth
+// caustic (4 against 8 and 16 at equal time: docs/performance.md section 5).
 inline constexpr double kTargetPhotons = 4;
 // The smallest radius, relative to the schedule's.
 inline constexpr float kMinScale = 0.25f;
