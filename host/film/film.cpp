@@ -130,6 +130,7 @@ void Film::splat(uint32_t worker, int32_t el, float fx, float fy, const float *v
   if (!(fx >= 0 && fy >= 0 && fx < float(width_) && fy < float(height_))) return;
   const uint32_t x = std::min(static_cast<uint32_t>(fx), width_ - 1);
   const uint32_t y = std::min(static_cast<uint32_t>(fy), height_ - 1);
+  if (x < region_[0] || y < region_[1] || x >= region_[2] || y >= region_[3]) return;
   WorkerSplats &w = e.workers[worker];
   // Only this worker touches slot `worker`, so allocating here races with nobody.
   if (w.sum.empty()) w.sum.assign(pixel_count() * channels, 0.0);

@@ -47,6 +47,11 @@ class Film {
   // Gives buffers to every element that is registered and requested; may be called again after more
   // requests. A requested name nobody registered is an error and allocates nothing.
   Status allocate();
+  // The render region [x0, x1) x [y0, y1): splats outside it are dropped, as the camera renders only its
+  // pixels (the whole film until set).
+  void set_region(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
+    region_[0] = x0, region_[1] = y0, region_[2] = x1, region_[3] = y1;
+  }
   // Splat buffers are per worker so render threads never share a cache line; call before rendering.
   // Pending (unmerged) splats are merged first so none are lost.
   void set_worker_count(uint32_t workers);
@@ -131,6 +136,7 @@ class Film {
   void activate(Element &e);
 
   uint32_t width_, height_;
+  uint32_t region_[4] = {0, 0, ~0u, ~0u};  // x0, y0, x1, y1 (clipped to the film by splat)
   uint32_t worker_count_ = 1;
   uint64_t iterations_ = 0;
   std::vector<Element> elements_;

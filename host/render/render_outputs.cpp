@@ -42,6 +42,8 @@ Status set_up_film(Film &film, const RenderJob &job, const PluginHandle &integra
   }
   if (Status s = film.allocate(); !s) return s.error();
   film.set_worker_count(workers);
+  if (job.region[2] > job.region[0] && job.region[3] > job.region[1])
+    film.set_region(job.region[0], job.region[1], job.region[2], job.region[3]);
   return Ok{};
 }
 

@@ -22,6 +22,7 @@
 #include "merging.hpp"
 #include "photon_budget.hpp"
 #include "photon_pass.hpp"
+#include "photon_splats.hpp"
 #include "schedule.hpp"
 #include "solver_options.hpp"
 #include "solver_stats.hpp"
@@ -56,7 +57,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
 
   nimbus_status_t prepare(const nimbus_render_setup_t &setup) override {
     options_ = SolverOptions::of(setup);
-    budget_ = PhotonBudget(options_.photon_memory_mb), budget_said_ = false;
+    budget_ = PhotonBudget(options_.photon_memory_mb);
     if (nimbus_status_t s = Base::prepare(setup); s != NIMBUS_OK) return s;
     seed_ = setup.seed;
     guide_ = options_.uniform_emission ? GuideBinding{} : GuideBinding::of(setup.guide);
@@ -72,6 +73,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
                     query_sharp_targets(host().get(), services().scene, kSharpAlpha));
     merge_element_ =
         services().film->register_element(host().get(), "caustics_merge", 3, NIMBUS_ELEMENT_AVERAGE);
+    // Splatted photons (photon_splats.hpp) are light of the `caustics` element too.
+    services().film->register_element(host().get(), diverted_element(), 3, NIMBUS_ELEMENT_SPLAT);
     return NIMBUS_OK;
   }
 
@@ -104,6 +107,10 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     emitters_.reset_emission_map(options_.adaptive_map);
     pending_used_.clear();
     armed_ = options_.enabled && caustics_can_form;
+    // No splats for lookups that ignore photon times (a measurement option): merges then mix times.
+    splat_camera_ = {armed_ && options_.times_matched && splats_possible(h, services(), spectral()),
+                     normalize(Vec3f::load(eye.dir)), theta_pix_};
+    merge_.view_axis = splat_camera_.axis, merge_.theta_pix = theta_pix_;
     // The `caustics` element is the light of a class of paths (spec 8), with or without a map, and with
     // the switch off too (then the path tracer's share of that light).
     classify_ = caustics_can_form && ids().diverted != NIMBUS_ELEMENT_INVALID;
@@ -123,7 +130,9 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   nimbus_status_t begin_iteration(uint64_t frame_iteration) override {
     if (!armed_) return NIMBUS_OK;
     const uint64_t iteration = split_.task_number(frame_iteration);
-    const uint64_t paths = within_memory_budget(schedule_.plan(iteration));
+    std::string warning;  // the pass's paths, fewer if its photons could exceed the memory budget
+    const uint64_t paths = budget_.paths_for_pass(schedule_.plan(iteration), pass_.map(), warning);
+    if (!warning.empty()) log(NIMBUS_LOG_WARNING, warning);
     if (rebuild_map_) {
       // A resumed render: the map of the last pass, from the same arguments (photon_pass is deterministic)
       // and the same light selection, with the lookups' flags on its paths as they were saved. Traced
@@ -163,7 +172,11 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     merge_.time_half_width = PhotonClock::half_width(pass);
     merge_.lambda_half_width = PhotonClock::lambda_half_width(pass);
     merge_.lookup_probability = roulette_.probabilities();
-    return NIMBUS_OK;
+    if (!map_active_ || !(merge_.splat_paths > 0)) return NIMBUS_OK;
+    return splat_photons(
+        {host().get(), tasks_, services().film, ids().lightmix ? services().lightmix : nullptr, &merge_,
+         &pixel_radius_, width_, height_, pass_.splats(), pass_.photons()},
+        stats_.mis_clamped);
   }
 
   // The camera-path layer's hooks: the camera path of one sample, and the statistics of the schedule.
@@ -204,20 +217,17 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     const UsefulPixels::Summary summary = useful_.summarize(pixels, double(schedule_.iterations_per_map()));
     if (map_active_) {
       // The efficiency model's inputs (spec 5): variances of this window, work per path of each side.
-      uint64_t camera_work = 0, lookup_work = 0;
-      std::array<uint64_t, kLookupClasses> class_work{};
-      for (CameraTally &t : tallies_) {
-        camera_work += t.work, stats_.camera_done(t);
-        for (uint32_t c = 0; c < kLookupClasses; ++c) class_work[c] += t.lookup_work[c];
-        t = {};
-      }
-      for (uint64_t w : class_work) lookup_work += w;
+      const CameraTally sum = sum_tallies(tallies_, [&](const CameraTally &t) { stats_.camera_done(t); });
+      const uint64_t camera_work = sum.work;
+      uint64_t lookup_work = 0;
+      for (uint64_t w : sum.lookup_work) lookup_work += w;
       const double n_cam = double(std::max<uint64_t>(1, pixels)), rho = schedule_.map_photon_ratio();
       RouletteSample roulette{summary.v_camera + summary.v_merge,
                               summary.second_moment,
                               double(camera_work) / n_cam + rho * photon_work_,
                               {}};
-      for (uint32_t c = 0; c < kLookupClasses; ++c) roulette.lookup_work[c] = double(class_work[c]) / n_cam;
+      for (uint32_t c = 0; c < kLookupClasses; ++c)
+        roulette.lookup_work[c] = double(sum.lookup_work[c]) / n_cam;
       roulette_.update(roulette);
       const double per_photon_path = photon_work_ + (rho > 0 ? double(lookup_work) / (rho * n_cam) : 0.0);
       const EfficiencySample e{summary.v_merge, summary.v_camera, rho, double(camera_work) / n_cam,
@@ -296,7 +306,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   }
 
  private:
-  // Photon pass `pass` of `paths` paths: the map and what camera passes read with it.
   // The light selection of the next photon map, from the bound sampler (emission_selection.hpp).
   nimbus_status_t select_lights() {
     std::vector<double> p;
@@ -308,32 +317,19 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     return s;
   }
 
-  // The pass's paths, fewer when their photons could need more than the memory budget (said once).
-  uint64_t within_memory_budget(uint64_t paths) {
-    const PhotonKdTree &map = pass_.map();
-    const double per_photon = map.size() ? double(map.bytes()) / double(map.size()) : 0;
-    const uint64_t fit = budget_.paths_within(paths, per_photon);
-    if (fit < paths && !budget_said_)
-      log(NIMBUS_LOG_WARNING, "a photon pass of " + std::to_string(paths) + " paths could need " +
-                                  std::to_string(uint64_t(budget_.worst_bytes(paths, per_photon)) >> 20) +
-                                  " MiB, over the photon memory budget of " +
-                                  std::to_string(budget_.bytes() >> 20) + " MiB: passes trace at most " +
-                                  std::to_string(fit) + " paths");
-    budget_said_ = budget_said_ || fit < paths;
-    return fit;
-  }
-
   nimbus_status_t photon_pass(uint32_t j, uint64_t paths, float filter_reach, PhotonPass::Result &result) {
     const nimbus_host_t *h = host().get();
     const uint32_t pass = uint32_t(split_.frame_number(j));  // keys its random numbers, as the radius
     if (progress_) progress_->report(h, 0, paths, "photons");
     sdk::TimedScene scene = timed_scene();
     scene.timed = merge_.clock.timed();  // a moving camera alone leaves photons untimed
-    const PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth(), scene, spectral());
+    PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth(), scene, spectral());
     // Guided once some lookup has marked where the camera needs photons; a resumed render's rebuild finds
-    // the frozen map its pass used in the saved state.
+    // the frozen map its pass used in the saved state. A guided map's photons are not splatted.
     if (!rebuild_map_) pass_importance_ = guide_ ? importance_ : ImportanceMap(scene_center_, scene_radius_);
-    if (guide_ && !pass_importance_.empty()) {
+    const bool guided = guide_ && !pass_importance_.empty();
+    tracer.connect_to(guided ? SplatCamera{} : splat_camera_);
+    if (guided) {
       if (nimbus_status_t s = pass_.run_guided(tracer, guide_, pass_importance_, tasks_, h, seed_, pass,
                                                paths, filter_reach, result);
           s != NIMBUS_OK) {
@@ -351,6 +347,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     merge_.map_paths = result.paths, merge_.importance = &pass_importance_;
     merge_.importance_ratio = result.importance_ratio, merge_.path_use = &pass_.path_use();
     merge_.scene_radius = scene_radius_, merge_.density_weight = density_weights(emitters_);
+    merge_.splat_paths = splat_camera_.enabled && !guided ? double(result.paths) : 0.0;
+    stats_.splats += pass_.splats().size();
     photon_work_ = result.traced > 0 ? double(result.work) / double(result.traced) : 0.0;
     return NIMBUS_OK;
   }
@@ -365,7 +363,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
 
   SolverOptions options_;  // the `caustics` switch and the measurement options
   PhotonBudget budget_{0};
-  bool budget_said_ = false;
   bool armed_ = false;     // enabled, and some light emits photons towards sharp geometry
   bool classify_ = false;  // camera passes without a map sort paths into the `caustics` element
   EmitterSet emitters_;
@@ -376,6 +373,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   sdk::TaskSplit split_;    // pass j is the frame's pass frame_number(j): docs/farm-rendering.md
   double photon_work_ = 0;  // work units per photon path of the last pass
   PhotonPass pass_;
+  SplatCamera splat_camera_;  // how photon passes connect photons to the lens (photon_splats.hpp)
   uint64_t map_request_ = 0;  // photon paths asked of the current map's pass
   float map_reach_ = 0;       // and its occupancy filter's reach
   bool rebuild_map_ = false;  // resumed with a map active: trace it again before the next camera pass
@@ -390,7 +388,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   UsefulPixels useful_;
   PixelRadius pixel_radius_;
   LookupRoulette roulette_;
-  static constexpr uint32_t kStateVersion = 7;  // the format of save_state's bytes
+  static constexpr uint32_t kStateVersion = 8;  // the format of save_state's bytes
   SolverStats stats_;
 };
 

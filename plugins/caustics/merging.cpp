@@ -27,7 +27,8 @@ bool photon_at_wavelength(const MergeContext &mc, float lambda_p, float lambda_c
 
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, LookupClass cls,
-                         float neff, const TimeWindow &window, float lambda, CausticsRecord &rec) {
+                         float neff, const TimeWindow &window, float lambda, Mis eta_splat,
+                         CausticsRecord &rec) {
   const float q = mc.lookup_probability[cls], q_mis = mc.lookup_mis_density(cls);
   uint32_t evaluated = 0;
   float density_count = 0;
@@ -71,7 +72,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     const Rgb fr = Rgb::load(f);
     if (is_black(fr)) return;
     const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
-                                 m_neff_b, mis_state.gamma_sum(k), mis_state.clamped);
+                                 m_neff_b, mis_state.gamma_sum(k), mis_state.clamped, eta_splat);
     const float kernel = kernel_norm * (1 - d2 / r2) * in_time;
     const Rgb c = fr * power * (w * kernel);
     if (!is_finite(c) || is_black(c)) return;

@@ -50,6 +50,11 @@ struct MergeContext {
   const nimbus_host_spectral_v1_t *spectral = nullptr;
   float lambda_half_width = 0;
   float scene_radius = 1;
+  // The splat technique (photon_splats.hpp): N_u while the map's photons are splatted (0: no splats),
+  // and the view axis and pixel width its camera density reads (mis.hpp, camera_density).
+  double splat_paths = 0;
+  Vec3f view_axis{0, 0, 1};
+  float theta_pix = 0;
   // Lookup probability per class of rough vertex (lookup_roulette.hpp), set before each camera pass.
   std::array<float, kLookupClasses> lookup_probability{1.0f, 1.0f};
   // The merge technique's factor on the photon density in MIS at a class of lookup vertex: its lookup
@@ -93,9 +98,11 @@ struct LookupCost {
 // MergeContext::lookup_mis_density scales the merge technique's density in the weights. neff: the
 // effective photon count at x_s, times the window's share rho of photon times. window: the photon times the
 // lookup accepts (photon_windows.hpp). lambda: the camera path's wavelength (0 while it carries RGB).
+// eta_splat: mis(splat_eta) at x_1 while photons are splatted, else 0.
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, LookupClass cls,
-                         float neff, const TimeWindow &window, float lambda, CausticsRecord &rec);
+                         float neff, const TimeWindow &window, float lambda, Mis eta_splat,
+                         CausticsRecord &rec);
 
 // The effective photon count at x (spec 6.3): N_u, raised where the guide's chains aimed.
 inline float effective_photons(const MergeContext &mc, const Vec3f &x) {
@@ -121,6 +128,20 @@ struct CameraTally {
   uint64_t mis_clamped = 0;                               // paths whose MIS weights met an overflow
   uint64_t first_lookups = 0, shrunk_lookups = 0;  // first lookups, and those below the schedule radius
 };
+
+// One iteration's camera work, summed over the workers' tallies (which restart empty); `each` sees every
+// tally first (the render statistics).
+template <class Tallies, class Each>
+CameraTally sum_tallies(Tallies &tallies, Each &&each) {
+  CameraTally sum;
+  for (CameraTally &t : tallies) {
+    each(t);
+    sum.work += t.work;
+    for (uint32_t c = 0; c < kLookupClasses; ++c) sum.lookup_work[c] += t.lookup_work[c];
+    t = {};
+  }
+  return sum;
+}
 
 class MergingPath {
  public:
@@ -148,8 +169,11 @@ class MergingPath {
   MergingPath &operator=(const MergingPath &) = delete;
 
   void arrive(float t, const nimbus_interaction_t &ix, const Vec3f &dir) {
+    const float c_in = std::abs(dot(Vec3f::load(ix.ng), dir));
+    // x_1 seen from the lens, for the splat technique's camera density there.
+    if (length_ == 0) cos_first_ = c_in, axis_cos_ = dot(mc_.view_axis, dir);
     length_ += t;
-    mis_.arrive(std::abs(dot(Vec3f::load(ix.ng), dir)));
+    mis_.arrive(c_in);
   }
 
   sdk::PathWeight hit(const sdk::LightHit &h) const {
@@ -172,6 +196,9 @@ class MergingPath {
       window_ = mc_.clock.window(v.time_u, mc_.time_half_width);
       neff_ = effective_photons(mc_, Vec3f::load(v.ix->p)) * window_.rho;
     }
+    eta_splat_ = 0;
+    if (lookup_ && v.segments == 1 && mc_.splat_paths > 0)
+      eta_splat_ = splat_eta(mc_.splat_paths, camera_density(length_, cos_first_, axis_cos_, mc_.theta_pix));
     if (lookup_ && cls == kFirstLookup) {
       const float r = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
       radius_ = pixel_radius_.radius(pixel_, r, neff_);
@@ -182,7 +209,7 @@ class MergingPath {
         (q_ >= 1 || float(mix64(key_ ^ v.segments) >> 40) * 0x1p-24f < q_)) {
       radii_.add(radius_);
       const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, cls, neff_,
-                                         window_, v.lambda, rec);
+                                         window_, v.lambda, mis(eta_splat_), rec);
       tally_.lookup_work[cls] += c.work();
       rec.lookup_moment[cls] += q_ * c.light * c.light;
       if (cls == kFirstLookup) {
@@ -212,7 +239,7 @@ class MergingPath {
   void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
                uint32_t segments) {
     mis_.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup_, segments,
-                 kPi * Mis(radius_) * radius_ * Mis(neff_) * q_mis_);
+                 kPi * Mis(radius_) * radius_ * Mis(neff_) * q_mis_, eta_splat_);
   }
 
  private:
@@ -232,7 +259,9 @@ class MergingPath {
   float neff_ = 0;       // effective photon count at the current lookup vertex (times window_.rho)
   TimeWindow window_;    // the photon times the current lookup accepts
   float length_ = 0;     // path length from the lens to the current vertex
-  bool lookup_ = false;  // the current vertex looks photons up
+  float cos_first_ = 0, axis_cos_ = 0;  // at x_1: |cos| to the normal, cos to the view axis
+  Mis eta_splat_ = 0;                   // splat_eta at the current vertex (x_1 only)
+  bool lookup_ = false;                 // the current vertex looks photons up
 };
 
 // The plain path (nimbus.pt's estimator: its weights, its image) of camera passes without a photon map

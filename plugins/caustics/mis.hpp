@@ -211,9 +211,11 @@ struct CameraMis {
     return true;
   }
   // Scattering at x_j: c_out, w_fwd, w_rev as in PhotonMis::scatter. lookup: x_j is a lookup vertex
-  // (then a new term starts with eta_j = pi r_j^2 * Neff(x_j) * rho(x_j)). Terms that can no longer be
-  // merge techniques (dead, or too far from any later emitter for D_photon) are dropped first.
-  void scatter(float c_out, float w_fwd, float w_rev, bool lookup, uint32_t j, Mis eta) {
+  // (then a new term starts with eta_j = pi r_j^2 * Neff(x_j) * rho(x_j)). eta_splat: at x_1, the splat
+  // technique's eta (splat_eta; 0 without one), which samples the same paths as the merge there. Terms
+  // that can no longer be merge techniques (dead, or too far from any later emitter for D_photon) are
+  // dropped first.
+  void scatter(float c_out, float w_fwd, float w_rev, bool lookup, uint32_t j, Mis eta, Mis eta_splat = 0) {
     const Mis g = mis(Mis(c_out) / w_fwd);
     const Mis r = mis(Mis(w_rev));
     uint32_t n = 0;
@@ -225,7 +227,8 @@ struct CameraMis {
     }
     n_terms = n;
     if (lookup && n_terms < kMaxCameraTerms)
-      terms[n_terms++] = CameraTerm{std::ldexp(g * mis(eta), -exp2), j, false, false, false};
+      terms[n_terms++] =
+          CameraTerm{std::ldexp(g * (mis(eta) + mis(eta_splat)), -exp2), j, false, false, false};
     rescale();
   }
   void rescale() {
@@ -296,14 +299,43 @@ inline float hit_weight(float nee_ratio, const MisSum &s_cam, float lp, bool &cl
 //   eta:        mis(pi r_s^2 * Neff_s * rho_s); neff: mis(Neff_s * rho_s); neff_b: mis(Neff at B's
 //               vertices) (v1: Neff is the same everywhere)
 //   gamma_sum:  CameraMis::gamma_sum(s + depth) (its terms carry their own eta)
+//   eta_splat:  at x_1, mis(splat_eta) of the splat technique (0 elsewhere and without one)
 inline float merge_weight(float log2_A, float log2_B, bool b_valid, bool prev_rough, float w_cam_fwd,
                           float w_cam_rev, Mis eta, Mis neff, Mis neff_b, const MisSum &gamma_sum,
-                          bool &clamped) {
+                          bool &clamped, Mis eta_splat = 0) {
   Mis light = std::exp2(Mis(log2_A)) / eta;
   if (b_valid) light += std::exp2(Mis(log2_B)) * neff_b / neff;
-  Mis others = mis(Mis(w_cam_fwd)) * light;
+  Mis others = mis(Mis(w_cam_fwd)) * light + (eta_splat > 0 ? eta_splat / eta : 0.0);
   if (!(others <= std::numeric_limits<Mis>::max())) clamped = true;
   if (!prev_rough && gamma_sum.sum > 0) others += gamma_sum.times(mis(Mis(w_cam_rev)) / eta, clamped);
+  return mis_weight(others);
+}
+
+// The splat technique (photon_splats.hpp): a stored photon connected to the camera as the path's first
+// vertex x_1, as a light tracer would. It samples the paths the merge at x_1 samples, with N_u light
+// paths against the merge's pi r^2 Neff rho per camera path, so its eta is N_u / C_1 (C_1: the camera
+// paths' density of first vertices at x_1, camera_density) and every ratio to the other techniques is
+// the merge at x_1's times eta_splat / eta.
+inline Mis splat_eta(double photon_paths, double camera_density) {
+  return camera_density > 0 ? photon_paths / camera_density : 0.0;
+}
+// The camera paths' density of first vertices at x_1 per iteration, in area measure: one sample per
+// pixel, a pixel of theta_pix^2 cos^3(axis angle) steradians at the lens, times cos_1 / d^2. Both sides
+// evaluate it from the same quantities of the path (distance, cosine at x_1, cosine to the view axis),
+// so the weights stay a partition of unity whatever it misses of the camera model.
+inline double camera_density(float d, float cos_1, float cos_axis, float theta_pix) {
+  const double c = std::abs(double(cos_axis)), px = double(theta_pix) * theta_pix;
+  return d > 0 && c > 0 && px > 0 ? std::abs(double(cos_1)) / (double(d) * d * px * c * c * c) : 0.0;
+}
+// Weight of splatting photon (A, B, b_valid) at x_1: the merge at x_1 and every technique that merge
+// competes with (its arguments as merge_weight's), relative to the splat's eta_splat = mis(splat_eta).
+inline float splat_weight(float log2_A, float log2_B, bool b_valid, float w_cam_fwd, Mis eta, Mis neff,
+                          Mis neff_b, Mis eta_splat, bool &clamped) {
+  if (!(eta_splat > 0)) return 0.0f;
+  Mis light = std::exp2(Mis(log2_A));
+  if (b_valid && neff > 0) light += std::exp2(Mis(log2_B)) * neff_b * eta / neff;
+  const Mis others = (eta + mis(Mis(w_cam_fwd)) * light) / eta_splat;
+  if (!(others <= std::numeric_limits<Mis>::max())) clamped = true;
   return mis_weight(others);
 }
 

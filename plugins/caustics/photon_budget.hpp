@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 
 #include "photon_map.hpp"
 #include "photon_pass.hpp"
@@ -29,10 +30,25 @@ class PhotonBudget {
     return std::min<uint64_t>(paths, uint64_t(std::max(fit, 1.0)));
   }
 
+  // The paths of a pass asked for `paths` after the map `last`; the first pass it cuts fills `warning`.
+  uint64_t paths_for_pass(uint64_t paths, const PhotonKdTree &last, std::string &warning) {
+    const double per_photon = last.size() ? double(last.bytes()) / double(last.size()) : 0;
+    const uint64_t fit = paths_within(paths, per_photon);
+    if (fit < paths && !warned_)
+      warning = "a photon pass of " + std::to_string(paths) + " paths could need " +
+                std::to_string(uint64_t(worst_bytes(paths, per_photon)) >> 20) +
+                " MiB, over the photon memory budget of " + std::to_string(bytes_ >> 20) +
+                " MiB: passes trace at most " + std::to_string(fit) + " paths";
+    warned_ = warned_ || fit < paths;
+    return fit;
+  }
+
   // The worst-case bytes of a pass of `paths`: every path at the guard's cap, each photon in its chunk and
-  // in the map (at least 1.5 photons' size with the index before the first map is measured).
+  // in the map (at least 1.5 photons' size with the index before the first map is measured), with its
+  // splat in the chunk and in the pass.
   double worst_bytes(uint64_t paths, double map_bytes_per_photon) const {
-    const double per_photon = std::max(map_bytes_per_photon, 1.5 * sizeof(Photon)) + sizeof(Photon);
+    const double per_photon =
+        std::max(map_bytes_per_photon, 1.5 * sizeof(Photon)) + sizeof(Photon) + 2.0 * sizeof(PhotonSplat);
     return double(paths) * double(kPhotonsPerPathCap) * per_photon;
   }
 
@@ -42,6 +58,7 @@ class PhotonBudget {
     return pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) / 4 : uint64_t(1) << 30;
   }
   uint64_t bytes_;
+  bool warned_ = false;  // a pass was cut (said once)
 };
 
 }  // namespace nimbus::caustics

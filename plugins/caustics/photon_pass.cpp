@@ -53,11 +53,14 @@ void PhotonPass::assemble(const sdk::ParallelFor &parallel, float filter_reach, 
   // Concatenate in task order: photon and path indices never depend on threads. The chunks are copied
   // concurrently, their photons' path indices moved to the pass's numbering.
   std::vector<size_t> offset(chunks_.size() + 1, 0), path_offset(chunks_.size() + 1, 0);
+  std::vector<size_t> splat_offset(chunks_.size() + 1, 0);
   for (size_t i = 0; i < chunks_.size(); ++i) {
     offset[i + 1] = offset[i] + chunks_[i].photons.size();
     path_offset[i + 1] = path_offset[i] + chunks_[i].path_light.size();
+    splat_offset[i + 1] = splat_offset[i] + chunks_[i].splats.size();
   }
   photons_.resize(offset.back());
+  splats_.resize(splat_offset.back());
   std::vector<uint32_t> lights(path_offset.back()), cells(path_offset.back());
   parallel(chunks_.size(), [&](size_t i) {
     const PhotonChunk &c = chunks_[i];
@@ -65,6 +68,8 @@ void PhotonPass::assemble(const sdk::ParallelFor &parallel, float filter_reach, 
     for (const Photon &ph : c.photons) *out = ph, (out++)->path = ph.path + uint32_t(path_offset[i]);
     std::copy(c.path_light.begin(), c.path_light.end(), lights.begin() + ptrdiff_t(path_offset[i]));
     std::copy(c.path_emission.begin(), c.path_emission.end(), cells.begin() + ptrdiff_t(path_offset[i]));
+    PhotonSplat *splat = splats_.data() + splat_offset[i];
+    for (const PhotonSplat &sp : c.splats) *splat = sp, (splat++)->photon = sp.photon + uint32_t(offset[i]);
   });
   use_.reset(std::move(lights), std::move(cells));
   map_.build(photons_, parallel, filter_reach, tracer.timed(), tracer.dispersive());
@@ -80,6 +85,7 @@ void PhotonPass::release() {
   map_ = PhotonKdTree();
   chunks_ = std::vector<PhotonChunk>();
   photons_ = std::vector<Photon>();
+  splats_ = std::vector<PhotonSplat>();
   use_ = PathUse();
 }
 

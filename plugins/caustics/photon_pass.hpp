@@ -6,6 +6,7 @@
 
 #include <nimbus/nimbus.hpp>
 
+#include <span>
 #include <vector>
 
 #include <nimbus/cpp/rng.hpp>
@@ -82,6 +83,9 @@ class PhotonPass {
   static float filter_reach(sdk::PerWorker<RadiusHistogram> &lookup_radii);
 
   const PhotonKdTree &map() const { return map_; }
+  // The map's photons in pass order, and their connections to the lens (photon_splats.hpp).
+  std::span<const Photon> photons() const { return photons_; }
+  std::span<const PhotonSplat> splats() const { return splats_; }
   // The map's paths: their lights, and which of them camera lookups used.
   PathUse &path_use() { return use_; }
   const PathUse &path_use() const { return use_; }
@@ -95,6 +99,7 @@ class PhotonPass {
 
   std::vector<PhotonChunk> chunks_;  // one buffer per task
   std::vector<Photon> photons_;      // the tasks' photons in task order
+  std::vector<PhotonSplat> splats_;  // their splats, in the same order
   PhotonKdTree map_;
   PathUse use_;
 };

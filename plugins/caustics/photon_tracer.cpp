@@ -155,6 +155,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
       ph.lambda = spectrum.lambda();
       out.photons.push_back(ph);
       out.work += kPhotonWork;
+      if (splat_.enabled) connect_to_lens(ctx, ix, wo, beta, time, hash_keys({path, depth}), out);
     }
     if (rough && prev_rough) return target;  // two consecutive rough vertices
     if (depth == kPhotonMaxVertices) return target;
@@ -179,6 +180,45 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
     svc_.scene->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
   }
   return target;
+}
+
+// The splat of the photon just stored at ix (photon_splats.hpp): its light towards the lens, as a light
+// tracer connects it, if the lens sees it. key picks the lens point (a hash: the photon path's own
+// numbers stay as they are). Reflection only: a merge needs the photon on the camera's side of the
+// surface (merging.cpp's side test), and the splat shares its paths.
+void PhotonTracer::connect_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix,
+                                   const Vec3f &wo, const Rgb &beta, float time, uint64_t key,
+                                   PhotonChunk &out) const {
+  const uint64_t u = hash_keys({key, 0x6c656e73});
+  const float lens_u[2] = {float(u >> 40) * 0x1p-24f, float((u >> 16) & 0xffffffu) * 0x1p-24f};
+  float raster[2], lens[3];
+  const float we = scene_.connect(h_, ix.p, time, lens_u, raster, lens);
+  if (!(we > 0)) return;
+  const Vec3f p = Vec3f::load(ix.p), ng = Vec3f::load(ix.ng), to_lens = Vec3f::load(lens) - p;
+  const float d = length(to_lens);
+  if (!(d > 0)) return;
+  const Vec3f wc = to_lens / d;
+  if (!(dot(ng, wc) * dot(ng, wo) > 0)) return;
+  float wo_arr[3], wc_arr[3], f[3], f_cam[3], pdf_cam = 0;
+  wo.store(wo_arr), wc.store(wc_arr);
+  // The light tracer's value (importance transport), and the camera path's pdf of the photon's direction
+  // as its merge evaluates it.
+  svc_.bsdf->eval(h_, &ix, wo_arr, wc_arr, NIMBUS_MODE_IMPORTANCE, f, nullptr, nullptr);
+  svc_.bsdf->eval(h_, &ix, wc_arr, wo_arr, NIMBUS_MODE_RADIANCE, f_cam, &pdf_cam, nullptr);
+  const Rgb value = beta * Rgb::load(f) * (std::abs(dot(Vec3f::load(ix.ns), wc)) * we);
+  if (is_black(value) || !is_finite(value) || !(pdf_cam > 0)) return;
+  nimbus_ray_t ray;
+  svc_.scene->spawn_ray_to(h_, &ix, lens, &ray);
+  out.work += kRayWork;
+  if (scene_.occluded(h_, ctx, ray, time)) return;
+  PhotonSplat s;
+  s.raster[0] = raster[0], s.raster[1] = raster[1];
+  value.store(s.value);
+  s.w_cam = pdf_cam;
+  s.density = float(camera_density(d, dot(ng, wc), dot(splat_.axis, -wc), splat_.theta_pix));
+  s.length = d;
+  s.photon = uint32_t(out.photons.size() - 1);
+  if (s.density > 0 && std::isfinite(s.density)) out.splats.push_back(s);
 }
 
 // Radiance (area) or intensity (point, spot) that finite light `light` emits from es.org along w.

@@ -20,6 +20,7 @@
 #include "mis.hpp"
 #include "path_use.hpp"
 #include "photon_map.hpp"
+#include "photon_splats.hpp"
 #include "schedule.hpp"
 
 namespace nimbus::caustics {
@@ -40,11 +41,12 @@ struct alignas(sdk::kCacheLineBytes) PhotonChunk {
   std::vector<GuidedPath> guided;       // a chain's paths, in the order traced (guided passes only)
   std::vector<uint32_t> path_light;     // every traced path's light (path_use.hpp), in the order traced
   std::vector<uint32_t> path_emission;  // and its emission-map cell (emission_map.hpp)
+  std::vector<PhotonSplat> splats;      // its photons' connections to the lens (photon_splats.hpp)
   uint64_t paths = 0;                   // completed paths
   uint64_t work = 0;                    // budget work units (schedule.hpp)
   // Empty for the next pass, keeping the buffers' memory.
   void reset() {
-    photons.clear(), guided.clear(), path_light.clear(), path_emission.clear();
+    photons.clear(), guided.clear(), path_light.clear(), path_emission.clear(), splats.clear();
     paths = 0, work = 0;
   }
 };
@@ -100,6 +102,10 @@ class PhotonTracer {
         scene_(scene),
         spectral_(spectral) {}
 
+  // [main-thread] Connects every stored photon to the lens with `camera` (photon_splats.hpp); not
+  // called, or disabled, no photon is.
+  void connect_to(const SplatCamera &camera) { splat_ = camera; }
+
   // Whether its photons carry scene times, and wavelengths after a dispersive vertex.
   bool timed() const { return scene_.timed; }
   bool dispersive() const { return spectral_ != nullptr; }
@@ -115,6 +121,8 @@ class PhotonTracer {
 
  private:
   Rgb emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w, float time) const;
+  void connect_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix, const Vec3f &wo,
+                       const Rgb &beta, float time, uint64_t key, PhotonChunk &out) const;
   Mis first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
                        const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const;
 
@@ -125,6 +133,7 @@ class PhotonTracer {
   uint32_t max_depth_;
   sdk::TimedScene scene_;
   const nimbus_host_spectral_v1_t *spectral_;
+  SplatCamera splat_;
 };
 
 }  // namespace nimbus::caustics

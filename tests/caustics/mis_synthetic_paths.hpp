@@ -35,6 +35,8 @@ struct SyntheticPath {
   // at x_s has the effective count neff (1 + c I_s).
   std::vector<double> importance;
   double ratio = 0;
+  // The splat technique (photon_splats.hpp): its eta N_u / C_1 at x_1 (0: photons are not splatted).
+  double splat = 0;
 
   bool finite() const { return light == LightKind::Area || light == LightKind::Point; }
   bool hittable() const { return light == LightKind::Area || light == LightKind::Infinite; }
@@ -103,6 +105,8 @@ inline SyntheticPath random_path(std::mt19937_64 &g, double spread = 1e3, uint32
     for (uint32_t j = 1; j < p.k; ++j)
       if (std::uniform_real_distribution<double>(0, 1)(g) < 0.67) p.importance[j] = log_uniform(g, 1e-4, 1e4);
   }
+  if (std::uniform_real_distribution<double>(0, 1)(g) < 0.5)
+    p.splat = log_uniform(g, 1 / spread, spread) * p.neff;
   return p;
 }
 
@@ -110,8 +114,9 @@ inline SyntheticPath random_path(std::mt19937_64 &g, double spread = 1e3, uint32
 struct ClosedForm {
   double qh = 0, qn = 0;
   std::vector<double> qm;  // by s (0 where no technique)
+  double qt = 0;           // the splat at x_1: a technique wherever the merge at x_1 is
   double sum() const {
-    double s = qh * qh + qn * qn;
+    double s = qh * qh + qn * qn + qt * qt;
     for (double q : qm) s += q * q;
     return s;
   }
@@ -165,6 +170,7 @@ inline ClosedForm closed_form(const SyntheticPath &p) {
     for (uint32_t j = s; j + 2 <= k; ++j) q *= L[j];
     f.qm[s] = q * light_pair;
   }
+  if (f.qm[1] > 0) f.qt = f.qm[1] * p.splat / (area_at(p, 1) * neff_at(p, 1) * lookup_probability_at(p, 1));
   return f;
 }
 

@@ -22,7 +22,8 @@ struct PhotonAt {
 };
 
 struct Weights {
-  double wh = 0, wn = 0;
+  double wh = 0, wn = 0, wt = 0;  // wt: the splat at x_1 (photon_splats.hpp)
+  bool splatted = false;
   std::vector<double> wm;
   bool hit = false, nee = false;
   std::vector<bool> merged;
@@ -86,12 +87,19 @@ Weights production(const SyntheticPath &p) {
     const Mis q_b = Mis(float(p.q_later));
     // The production code's effective count at a lookup vertex: N_u (1 + c I) in double, as a float.
     const Mis neff_j = Mis(float(double(neff) * (1.0 + p.ratio * double(float(p.importance[j])))));
+    // The splat technique's eta at x_1, as MergingPath and photon_splats.cpp compute it.
+    const Mis eta_splat = j == 1 && lookup ? Mis(p.splat) : 0.0;
     if (lookup && at[j].stored && p.lp > 0) {
       const PhotonAt &ph = at[j];
-      w.wm[j] =
-          merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
-                       mis(area * neff_j * q), mis(neff_j * q), mis(neff * q_b), cm.gamma_sum(k), cm.clamped);
+      w.wm[j] = merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
+                             mis(area * neff_j * q), mis(neff_j * q), mis(neff * q_b), cm.gamma_sum(k),
+                             cm.clamped, mis(eta_splat));
       w.merged[j] = true;
+      if (eta_splat > 0) {
+        w.wt = splat_weight(ph.A, ph.B, ph.b_valid, float(p.w_cam[j]), mis(area * neff_j * q),
+                            mis(neff_j * q), mis(neff * q_b), mis(eta_splat), cm.clamped);
+        w.splatted = true;
+      }
     }
     if (j == k - 1 && !p.delta(j)) {
       const float hit_ratio = p.hittable() ? mis(float(p.w_cam[j] / p.n_omega)) : 0.0f;
@@ -99,7 +107,8 @@ Weights production(const SyntheticPath &p) {
                         cm.clamped);
       w.nee = true;
     }
-    cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, area * neff_j * q);
+    cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, area * neff_j * q,
+               eta_splat);
   }
   w.clamped = cm.clamped;
   w.rescaled = w.rescaled || cm.exp2 != 0;
@@ -113,7 +122,7 @@ void expect_weight(double got, double want, const char *what, int path) {
 
 TEST(CausticsMis, WeightsMatchClosedFormAndSumToOne) {
   std::mt19937_64 g(20190704);
-  int paths_with_merges = 0, long_chains = 0;
+  int paths_with_merges = 0, long_chains = 0, splatted = 0;
   for (int n = 0; n < 200000; ++n) {
     const SyntheticPath p = random_path(g);
     const ClosedForm f = closed_form(p);
@@ -142,13 +151,21 @@ TEST(CausticsMis, WeightsMatchClosedFormAndSumToOne) {
       expect_weight(w.wm[s], f.qm[s] * f.qm[s] / total, "merge", n);
       sum += w.wm[s];
     }
+    EXPECT_EQ(w.splatted, f.qt > 0) << "splat technique on path " << n;
+    if (w.splatted) {
+      expect_weight(w.wt, f.qt * f.qt / total, "splat", n);
+      sum += w.wt;
+      splatted += 1;
+    }
     paths_with_merges += any_merge;
     long_chains += any_merge && p.k >= 8;
     EXPECT_NEAR(sum, 1.0, 1e-3) << "path " << n;
     if (HasFailure()) return;
   }
-  std::printf("paths with merge techniques: %d (k >= 8: %d)\n", paths_with_merges, long_chains);
+  std::printf("paths with merge techniques: %d (k >= 8: %d), with a splat technique: %d\n", paths_with_merges,
+              long_chains, splatted);
   EXPECT_GT(paths_with_merges, 10000);
+  EXPECT_GT(splatted, 2000);
   EXPECT_GT(long_chains, 500);
 }
 
@@ -161,7 +178,8 @@ TEST(CausticsMis, ExtremePathsKeepWeightsInRange) {
   for (int n = 0; n < 50000; ++n) {
     const SyntheticPath p = random_path(g, 1e12, 40);
     const Weights w = production(p);
-    double sum = (w.hit ? w.wh : 0.0) + (w.nee ? w.wn : 0.0);
+    double sum = (w.hit ? w.wh : 0.0) + (w.nee ? w.wn : 0.0) + (w.splatted ? w.wt : 0.0);
+    ASSERT_TRUE(!w.splatted || (w.wt >= 0 && w.wt <= 1)) << "splat weight " << w.wt << " on path " << n;
     for (uint32_t s = 1; s < p.k; ++s) {
       if (!w.merged[s]) continue;
       ASSERT_TRUE(w.wm[s] >= 0 && w.wm[s] <= 1) << "merge weight " << w.wm[s] << " on path " << n;

@@ -1,0 +1,76 @@
+// The splat technique's camera passes; see photon_splats.hpp.
+#include "photon_splats.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "merging.hpp"
+
+namespace nimbus::caustics {
+namespace {
+
+// Splats per task: a map's visible photons share out evenly over the workers.
+constexpr uint64_t kSplatsPerTask = 4096;
+
+struct SplatJob {
+  const SplatInputs *in;
+  std::atomic<uint64_t> *clamped;
+};
+
+// The weight of splat s of photon ph: the merge at x_1 it competes with is the one a camera path through
+// the same pixel would look up with (the pixel's radius, the first lookup's probability, the time
+// window around the photon's own time, since the path's camera time is the photon's).
+float weight(const MergeContext &mc, const PixelRadius &pixel_radius, size_t pixel, const PhotonSplat &s,
+             const Photon &ph, bool &clamped) {
+  const double paths = double(mc.map_paths);
+  const TimeWindow window = mc.clock.window(ph.time_u, mc.time_half_width);
+  const float neff = float(paths) * window.rho;
+  const float r =
+      pixel_radius.radius(pixel, merge_radius(mc.radius_per_length, s.length, mc.scene_radius), neff);
+  const float q_mis = mc.lookup_mis_density(kFirstLookup);
+  const Mis eta = mis(kPi * Mis(r) * r * Mis(neff) * q_mis), m_neff = mis(Mis(neff) * q_mis);
+  const Mis m_neff_b = mis(paths * mc.lookup_mis_density(kLaterLookup) * window.rho);
+  return splat_weight(ph.A, ph.B, ph.b_valid(), s.w_cam, eta, m_neff, m_neff_b,
+                      mis(splat_eta(paths, s.density)), clamped);
+}
+
+void splat_range(const nimbus_thread_ctx_t *ctx, uint64_t begin, uint64_t end, void *user) {
+  const SplatJob &job = *static_cast<const SplatJob *>(user);
+  const SplatInputs &in = *job.in;
+  const MergeContext &mc = *in.merge;
+  const float inv_paths = 1.0f / float(mc.map_paths);
+  uint64_t clamped = 0;
+  for (uint64_t i = begin; i < end; ++i) {
+    const PhotonSplat &s = in.splats[i];
+    if (!(s.raster[0] >= 0 && s.raster[1] >= 0)) continue;
+    const uint32_t x = uint32_t(s.raster[0]), y = uint32_t(s.raster[1]);
+    if (x >= in.width || y >= in.height) continue;
+    const Photon &ph = in.photons[s.photon];
+    bool overflow = false;
+    const float w = weight(mc, *in.pixel_radius, size_t(y) * in.width + x, s, ph, overflow);
+    clamped += overflow ? 1 : 0;
+    if (!(w > 0)) continue;
+    float v[3];
+    (Rgb::load(s.value) * (w * inv_paths)).store(v);
+    in.film->splat(in.host, ctx, NIMBUS_ELEMENT_BEAUTY, s.raster[0], s.raster[1], v);
+    // Every splatted path has a merge technique: its light is the `caustics` element's (spec 8).
+    if (mc.ids.diverted >= 0) in.film->splat(in.host, ctx, mc.ids.diverted, s.raster[0], s.raster[1], v);
+    if (in.lightmix && mc.light_group && ph.light() < mc.light_group->size())
+      in.lightmix->splat(in.host, ctx, (*mc.light_group)[ph.light()], s.raster[0], s.raster[1], v);
+  }
+  if (clamped) job.clamped->fetch_add(clamped, std::memory_order_relaxed);
+}
+
+}  // namespace
+
+nimbus_status_t splat_photons(const SplatInputs &in, uint64_t &clamped) {
+  if (in.splats.empty() || !in.merge || !(in.merge->map_paths > 0)) return NIMBUS_OK;
+  std::atomic<uint64_t> overflows{0};
+  SplatJob job{&in, &overflows};
+  const nimbus_status_t s =
+      in.tasks->parallel_for(in.host, in.splats.size(), kSplatsPerTask, splat_range, &job);
+  clamped += overflows.load();
+  return s;
+}
+
+}  // namespace nimbus::caustics
