@@ -1,10 +1,11 @@
 // nimbus.caustics: the one-click caustics solver (Sik & Krivanek 2019; spec in
 // shared/design/caustics-solver.md). Camera paths are nimbus.pt's paths (the SDK's camera-path layer,
 // same random numbers); photon passes between camera passes store photons after sharp bounces
-// (photon_pass, photon_tracer), and camera paths look them up at their rough vertices with MIS weights
-// that put merging and path tracing in one power-heuristic combination (merging, mis.hpp). Without an
-// active photon map a camera pass runs the plain path tracer (zero-cost rule, spec 9). This file holds
-// the solver's state and its hooks; the schedule (schedule.hpp) decides when and how many photons.
+// (photon_pass, photon_tracer), camera paths look them up at their rough vertices, and photons the lens
+// sees are splatted (photon_splats), with MIS weights that put merging, splatting and path tracing in
+// one power-heuristic combination (merging, mis.hpp). Without an active photon map a camera pass runs
+// the plain path tracer (zero-cost rule, spec 9). This file holds the solver's state and its hooks; the
+// schedule (schedule.hpp) decides when and how many photons.
 #include <nimbus/nimbus.hpp>
 
 #include <chrono>
@@ -163,6 +164,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
         return s;
       stats_.pass_done(result, pass_.map(),
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      stats_.splats += pass_.splats().size();
       useful_.map_changed(!result.guided);  // a guided map's halves are dependent
       schedule_.pass_done(iteration, result.traced, pass_.map().size());
     }
@@ -348,7 +350,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     merge_.importance_ratio = result.importance_ratio, merge_.path_use = &pass_.path_use();
     merge_.scene_radius = scene_radius_, merge_.density_weight = density_weights(emitters_);
     merge_.splat_paths = splat_camera_.enabled && !guided ? double(result.paths) : 0.0;
-    stats_.splats += pass_.splats().size();
     photon_work_ = result.traced > 0 ? double(result.work) / double(result.traced) : 0.0;
     return NIMBUS_OK;
   }
