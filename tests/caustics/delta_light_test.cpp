@@ -41,12 +41,17 @@ std::string num(double v) {
 }
 std::string vec(ref::V3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 
-// The scene file of a reference scene, from the same numbers, so that both render one scene.
-std::string scene_yaml(const ref::Scene &s) {
+// The scene file of a reference scene, from the same numbers, so that both render one scene. aperture:
+// a thin lens of that radius focused on the floor, whose points every lens point sees at the pinhole's
+// raster position, so the reference (a pinhole's) holds for pixels that see only floor through the
+// whole lens.
+std::string scene_yaml(const ref::Scene &s, double aperture = 0) {
   std::string y = "render: { resolution: [" + std::to_string(s.width) + ", " + std::to_string(s.height) +
                   "], max_depth: " + std::to_string(s.max_depth) + ", filter: box }\n";
   y += "camera: { position: " + vec(s.eye) + ", look_at: " + vec({s.eye.x, s.eye.y, 0}) +
-       ", up: [0, 1, 0], fov: " + num(s.fov_deg) + " }\n";
+       ", up: [0, 1, 0], fov: " + num(s.fov_deg);
+  if (aperture > 0) y += ", aperture: " + num(aperture) + ", focus_distance: " + num(s.eye.z);
+  y += " }\n";
   y += "materials:\n  floor: { type: diffuse, albedo: " + num(s.albedo) +
        " }\n  glass: { type: dielectric, ior: " + num(s.ior) + " }\n  black: { type: diffuse, albedo: 0 }\n";
   for (size_t i = 0; i < s.mirrors.size(); ++i)
@@ -208,7 +213,7 @@ constexpr uint64_t kPhotons = uint64_t(1) << 22;
 // kernel_bias: the merge kernel's blur at kIterations, as a share of the reference (0 where the region holds
 // the whole caustic and its blur stays inside).
 void compare_with_reference(const char *name, const ref::Scene &scene, const Region &region,
-                            double kernel_bias = 0) {
+                            double kernel_bias = 0, double aperture = 0) {
   const auto start = std::chrono::steady_clock::now();
   // The reference holds floor radiance only: every pixel of the region must see nothing but floor.
   for (int y = region.y0; y < region.y1; ++y)
@@ -217,7 +222,7 @@ void compare_with_reference(const char *name, const ref::Scene &scene, const Reg
   const Reference rf = summarize(ref::trace(scene, kPhotons, kBatches, 7), region);
   const auto traced = std::chrono::steady_clock::now();
   SceneRenderer renderer;
-  const std::string yaml = scene_yaml(scene);
+  const std::string yaml = scene_yaml(scene, aperture);
   std::vector<double> means, err_few, err_many;
   for (int k = 0; k < kSeeds; ++k) {
     const ImageLayers many = renderer.render(yaml, request(kIterations, 1 + k));
@@ -276,6 +281,14 @@ void compare_with_reference(const char *name, const ref::Scene &scene, const Reg
 
 TEST(CausticsDeltaLights, FarPointLight) {
   compare_with_reference("far point light", hall(ref::LightKind::Point), kCaustic);
+}
+
+// The same through a thin lens of 1 cm radius focused on the floor: photons splatted to the lens
+// (photon_splats.hpp) connect to a sampled lens point, and camera paths start from one. The region
+// leaves out the columns nearest the ball, which it hides from part of the lens.
+TEST(CausticsDeltaLights, FarPointLightThroughAThinLens) {
+  compare_with_reference("far point light, thin lens", hall(ref::LightKind::Point), Region{20, 14, 42, 34}, 0,
+                         0.01);
 }
 
 TEST(CausticsDeltaLights, FarSpotLight) { compare_with_reference("far spot light", spot(), kCaustic); }
