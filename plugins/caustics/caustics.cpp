@@ -177,7 +177,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     if (!map_active_ || !(merge_.splat_paths > 0)) return NIMBUS_OK;
     return splat_photons(
         {host().get(), tasks_, services().film, ids().lightmix ? services().lightmix : nullptr, &merge_,
-         &pixel_radius_, width_, height_, pass_.splats(), pass_.photons()},
+         &pixel_radius_, &useful_, width_, height_, pass_.splats(), pass_.photons()},
         stats_.mis_clamped);
   }
 
@@ -389,7 +389,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   UsefulPixels useful_;
   PixelRadius pixel_radius_;
   LookupRoulette roulette_;
-  static constexpr uint32_t kStateVersion = 8;  // the format of save_state's bytes
+  static constexpr uint32_t kStateVersion = 9;  // the format of save_state's bytes
   SolverStats stats_;
 };
 

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "merging.hpp"
+#include "useful_pixels.hpp"
 
 namespace nimbus::caustics {
 namespace {
@@ -15,6 +17,7 @@ constexpr uint64_t kSplatsPerTask = 4096;
 struct SplatJob {
   const SplatInputs *in;
   std::atomic<uint64_t> *clamped;
+  std::vector<float> *light;  // per splat, the luminance it added (0: none)
 };
 
 // The weight of splat s of photon ph: the merge at x_1 it competes with is the one a camera path through
@@ -51,7 +54,9 @@ void splat_range(const nimbus_thread_ctx_t *ctx, uint64_t begin, uint64_t end, v
     clamped += overflow ? 1 : 0;
     if (!(w > 0)) continue;
     float v[3];
-    (Rgb::load(s.value) * (w * inv_paths)).store(v);
+    const Rgb value = Rgb::load(s.value) * (w * inv_paths);
+    value.store(v);
+    (*job.light)[i] = luminance(value);
     in.film->splat(in.host, ctx, NIMBUS_ELEMENT_BEAUTY, s.raster[0], s.raster[1], v);
     // Every splatted path has a merge technique: its light is the `caustics` element's (spec 8).
     if (mc.ids.diverted >= 0) in.film->splat(in.host, ctx, mc.ids.diverted, s.raster[0], s.raster[1], v);
@@ -66,10 +71,18 @@ void splat_range(const nimbus_thread_ctx_t *ctx, uint64_t begin, uint64_t end, v
 nimbus_status_t splat_photons(const SplatInputs &in, uint64_t &clamped) {
   if (in.splats.empty() || !in.merge || !(in.merge->map_paths > 0)) return NIMBUS_OK;
   std::atomic<uint64_t> overflows{0};
-  SplatJob job{&in, &overflows};
+  std::vector<float> light(in.splats.size(), 0.0f);
+  SplatJob job{&in, &overflows, &light};
   const nimbus_status_t s =
       in.tasks->parallel_for(in.host, in.splats.size(), kSplatsPerTask, splat_range, &job);
   clamped += overflows.load();
+  // In splat order, on this thread: the sums stay the same at any thread count.
+  for (size_t i = 0; in.useful && i < light.size(); ++i) {
+    if (!(light[i] > 0)) continue;
+    const PhotonSplat &sp = in.splats[i];
+    const float split = in.photons[sp.photon].path & 1u ? -light[i] : light[i];  // as merging.cpp's halves
+    in.useful->add_splat(size_t(sp.raster[1]) * in.width + size_t(sp.raster[0]), light[i], split);
+  }
   return s;
 }
 

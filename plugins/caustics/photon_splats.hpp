@@ -21,6 +21,7 @@ namespace nimbus::caustics {
 
 struct MergeContext;
 class PixelRadius;
+class UsefulPixels;
 
 // A stored photon's connection to the lens, made in its photon pass.
 struct PhotonSplat {
@@ -47,6 +48,7 @@ struct SplatInputs {
   const nimbus_ext_lightmix_v1_t *lightmix = nullptr;  // null unless LightMix is active
   const MergeContext *merge = nullptr;
   const PixelRadius *pixel_radius = nullptr;
+  UsefulPixels *useful = nullptr;  // takes each pixel's splatted light (the budget's per-pixel values)
   uint32_t width = 0, height = 0;
   std::span<const PhotonSplat> splats;
   std::span<const Photon> photons;

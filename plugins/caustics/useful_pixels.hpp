@@ -64,10 +64,15 @@ class UsefulPixels {
   // [render-thread] One sample of pixel i (each pixel belongs to one tile, so no two threads meet);
   // moment: per class of lookup, the sum over its lookups of q Y^2 (Y the luminance a lookup added);
   // split: luminance of the merges of even-numbered photon paths minus odd-numbered ones.
+  // Light splatted into the pixel this iteration (add_splat) counts as part of this sample's merged light:
+  // the photons' light is the merges' and the splats' together, whose sum does not depend on how MIS
+  // shares it between them (a share that changes from map to map).
   void add(size_t i, const Rgb &beauty, const Rgb &merged, const std::array<float, kLookupClasses> &moment,
            float split = 0) {
-    const float b = luminance(beauty), m = luminance(merged), c = b - m;
     Sums &s = sums_[i];
+    const float b = luminance(beauty) + s.splat, m = luminance(merged) + s.splat, c = b - m;
+    split += s.splat_split;
+    s.splat = 0, s.splat_split = 0;
     s.n += 1, s.total += b, s.merge += m, s.camera2 += c * c;
     for (uint32_t k = 0; k < kLookupClasses; ++k) s.moment[k] += moment[k];
     s.map_n += 1, s.map_merge += m, s.map_merge2 += m * m, s.map_split += split;
@@ -76,6 +81,12 @@ class UsefulPixels {
   template <class Record>
   void add(size_t i, const Record &r) {
     add(i, r.beauty, r.merge, r.lookup_moment, r.merge_split);
+  }
+
+  // [main-thread] Light (luminance) splatted into pixel i before this iteration's camera pass
+  // (photon_splats.hpp), and its share from even-numbered photon paths minus odd-numbered ones.
+  void add_splat(size_t i, float light, float split) {
+    sums_[i].splat += light, sums_[i].splat_split += split;
   }
 
   // [main-thread] A new photon map replaces the current one: each pixel's merge mean under the old map
@@ -144,6 +155,7 @@ class UsefulPixels {
   // No padding bytes (the flags' are explicit), so that a saved state is the same bytes every time.
   struct Sums {
     float n = 0, total = 0, merge = 0, camera2 = 0;  // the window's samples
+    float splat = 0, splat_split = 0;                // splatted light awaiting this iteration's sample
     float moment[kLookupClasses] = {0, 0};           // the window's lookup second moments
     float map_n = 0, map_merge = 0, map_merge2 = 0;  // the current map's samples
     float map_split = 0;                             // and their merges' half difference (see the top)
@@ -151,7 +163,7 @@ class UsefulPixels {
     float between = 0, within = 0;                   // photon variance of a map; merges' sample variance
     uint8_t has_previous = 0, has_between = 0, unused[2] = {0, 0};
   };
-  static_assert(sizeof(Sums) == (12 + kLookupClasses) * sizeof(float));
+  static_assert(sizeof(Sums) == (14 + kLookupClasses) * sizeof(float));
   std::vector<Sums> sums_;
   bool halves_independent_ = false;  // the current map's (see map_changed)
 };

@@ -106,5 +106,22 @@ TEST(UsefulPixels, TheStateRoundTripsWithTheMapsKind) {
   EXPECT_FALSE(wrong.restore(again));
 }
 
+// Light splatted into a pixel before its sample (photon_splats.hpp) is photon light of that sample: a
+// pixel whose caustic the splats carry alone is useful, and its split counts in the map's halves.
+TEST(UsefulPixels, SplattedLightIsThePhotonsLight) {
+  UsefulPixels u;
+  u.reset(2);
+  for (int k = 0; k < 4; ++k) {
+    u.add_splat(0, 3.0f, k % 2 ? 1.0f : -1.0f);  // pixel 0: the splats carry its light
+    u.add(0, Rgb(1.0f), Rgb(0.0f), {0.0f, 0.0f});
+    u.add(1, Rgb(1.0f), Rgb(0.0f), {0.0f, 0.0f});  // pixel 1: no photon light at all
+  }
+  const UsefulPixels::Summary with = u.summarize(2, 1.0);
+  EXPECT_DOUBLE_EQ(with.useful, 0.5);
+  // The camera part (beauty minus photon light) is 1 in every sample: no camera variance; the pixel's
+  // value, 4, weighs it.
+  EXPECT_NEAR(with.v_camera, 0.0, 1e-12);
+}
+
 }  // namespace useful_pixels_test
 }  // namespace nimbus::caustics
