@@ -29,16 +29,16 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
                          const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, LookupClass cls,
                          float neff, const TimeWindow &window, float lambda, Mis eta_splat,
                          CausticsRecord &rec) {
-  const float q = mc.lookup_probability[cls], q_mis = mc.lookup_mis_density(cls);
+  const float q = mc.lookup_probability[cls];
   uint32_t evaluated = 0;
   float density_count = 0;
   const float r2 = r * r;
   // The photons' power is relative to a uniform path's (guided_pass.cpp), so 1 / N_u normalises it.
   const float inv_paths = 1.0f / (float(mc.map_paths) * q);
-  const Mis m_neff = mis(Mis(neff) * q_mis), eta = mis(kPi * r2 * Mis(neff) * q_mis);
   // The merges at the photon's rough vertices (B) are lookups after the camera path's first rough vertex.
   // B carries each of its vertices' effective counts relative to N_u (guided_pass.cpp).
-  const Mis m_neff_b = mis(Mis(mc.map_paths) * mc.lookup_mis_density(kLaterLookup) * window.rho);
+  const MergeDensities d = merge_densities(mc, r, neff, cls, window.rho);
+  const Mis m_neff = d.neff, eta = d.eta, m_neff_b = d.neff_b;
   const Vec3f ng = Vec3f::load(ix.ng);
   float wo_arr[3];
   wo.store(wo_arr);

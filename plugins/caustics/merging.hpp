@@ -64,6 +64,19 @@ struct MergeContext {
   }
 };
 
+// The merge technique's densities in MIS at a lookup of class cls with radius r, effective photon count
+// neff (times the time window's share rho): eta = mis(pi r^2 neff q), neff = mis(neff q), and neff_b, the
+// later lookups' count at the photon's rough vertices (B). merge_photons and the splats' weights share it.
+struct MergeDensities {
+  Mis eta, neff, neff_b;
+};
+inline MergeDensities merge_densities(const MergeContext &mc, float r, float neff, LookupClass cls,
+                                      float rho) {
+  const float q_mis = mc.lookup_mis_density(cls), r2 = r * r;
+  return {mis(kPi * r2 * Mis(neff) * q_mis), mis(Mis(neff) * q_mis),
+          mis(Mis(mc.map_paths) * mc.lookup_mis_density(kLaterLookup) * rho)};
+}
+
 // The most a photon of a rarely chosen light counts in a pixel's photon density.
 inline constexpr float kMaxDensityWeight = 8;
 

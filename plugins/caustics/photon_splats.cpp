@@ -30,10 +30,8 @@ float weight(const MergeContext &mc, const PixelRadius &pixel_radius, size_t pix
   const float neff = float(paths) * window.rho;
   const float r =
       pixel_radius.radius(pixel, merge_radius(mc.radius_per_length, s.length, mc.scene_radius), neff);
-  const float q_mis = mc.lookup_mis_density(kFirstLookup);
-  const Mis eta = mis(kPi * Mis(r) * r * Mis(neff) * q_mis), m_neff = mis(Mis(neff) * q_mis);
-  const Mis m_neff_b = mis(paths * mc.lookup_mis_density(kLaterLookup) * window.rho);
-  return splat_weight(ph.A, ph.B, ph.b_valid(), s.w_cam, eta, m_neff, m_neff_b,
+  const MergeDensities d = merge_densities(mc, r, neff, kFirstLookup, window.rho);
+  return splat_weight(ph.A, ph.B, ph.b_valid(), s.w_cam, d.eta, d.neff, d.neff_b,
                       mis(splat_eta(paths, s.density)), clamped);
 }
 
