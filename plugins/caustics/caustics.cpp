@@ -19,6 +19,8 @@
 #include "caustics_record.hpp"
 #include "emission_selection.hpp"
 #include "emitters.hpp"
+#include "iteration_inputs.hpp"
+#include "lens_connections.hpp"
 #include "lookup_roulette.hpp"
 #include "merging.hpp"
 #include "photon_budget.hpp"
@@ -74,8 +76,10 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
                     query_sharp_targets(host().get(), services().scene, kSharpAlpha));
     merge_element_ =
         services().film->register_element(host().get(), "caustics_merge", 3, NIMBUS_ELEMENT_AVERAGE);
-    // Splatted photons (photon_splats.hpp) are light of the `caustics` element too.
-    services().film->register_element(host().get(), diverted_element(), 3, NIMBUS_ELEMENT_SPLAT);
+    // Splatted photons (photon_splats.hpp) are light of the `caustics` element too, and light paths
+    // (light_paths.hpp) of the lighting elements.
+    for (const char *el : {diverted_element(), "direct", "indirect"})
+      services().film->register_element(host().get(), el, 3, NIMBUS_ELEMENT_SPLAT);
     return NIMBUS_OK;
   }
 
@@ -109,9 +113,10 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     pending_used_.clear();
     armed_ = options_.enabled && caustics_can_form;
     // No splats for lookups that ignore photon times (a measurement option): merges then mix times.
-    splat_camera_ = {armed_ && options_.times_matched && splats_possible(h, services(), spectral()),
-                     normalize(Vec3f::load(eye.dir)), theta_pix_};
-    merge_.view_axis = splat_camera_.axis, merge_.theta_pix = theta_pix_;
+    lens_.begin_render(emitters_,
+                       armed_ && options_.times_matched && splats_possible(h, services(), spectral()),
+                       merge_.clock.timed(), normalize(Vec3f::load(eye.dir)), theta_pix_,
+                       uint64_t(width_) * height_, merge_);
     // The `caustics` element is the light of a class of paths (spec 8), with or without a map, and with
     // the switch off too (then the path tracer's share of that light).
     classify_ = caustics_can_form && ids().diverted != NIMBUS_ELEMENT_INVALID;
@@ -174,11 +179,11 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     merge_.time_half_width = PhotonClock::half_width(pass);
     merge_.lambda_half_width = PhotonClock::lambda_half_width(pass);
     merge_.lookup_probability = roulette_.probabilities();
-    if (!map_active_ || !(merge_.splat_paths > 0)) return NIMBUS_OK;
-    return splat_photons(
+    return lens_.camera_pass(
+        map_active_,
         {host().get(), tasks_, services().film, ids().lightmix ? services().lightmix : nullptr, &merge_,
          &pixel_radius_, &useful_, width_, height_, pass_.splats(), pass_.photons()},
-        stats_.mis_clamped);
+        tracer(), frame_iteration, merge_, stats_);
   }
 
   // The camera-path layer's hooks: the camera path of one sample, and the statistics of the schedule.
@@ -216,25 +221,15 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     uint64_t pixels = 0;
     for (uint64_t &p : region_pixels_) pixels += p, p = 0;
     schedule_.set_camera_paths(pixels);
+    const uint64_t light_path_work = lens_.iteration_done(pixels);
     const UsefulPixels::Summary summary = useful_.summarize(pixels, double(schedule_.iterations_per_map()));
     if (map_active_) {
-      // The efficiency model's inputs (spec 5): variances of this window, work per path of each side.
+      // Light paths are camera-pass work.
       const CameraTally sum = sum_tallies(tallies_, [&](const CameraTally &t) { stats_.camera_done(t); });
-      const uint64_t camera_work = sum.work;
-      uint64_t lookup_work = 0;
-      for (uint64_t w : sum.lookup_work) lookup_work += w;
-      const double n_cam = double(std::max<uint64_t>(1, pixels)), rho = schedule_.map_photon_ratio();
-      RouletteSample roulette{summary.v_camera + summary.v_merge,
-                              summary.second_moment,
-                              double(camera_work) / n_cam + rho * photon_work_,
-                              {}};
-      for (uint32_t c = 0; c < kLookupClasses; ++c)
-        roulette.lookup_work[c] = double(sum.lookup_work[c]) / n_cam;
-      roulette_.update(roulette);
-      const double per_photon_path = photon_work_ + (rho > 0 ? double(lookup_work) / (rho * n_cam) : 0.0);
-      const EfficiencySample e{summary.v_merge, summary.v_camera, rho, double(camera_work) / n_cam,
-                               per_photon_path};
-      schedule_.iteration_done(iteration, summary.useful, e);
+      const IterationInputs in =
+          iteration_inputs(summary, sum, light_path_work, pixels, schedule_.map_photon_ratio(), photon_work_);
+      roulette_.update(in.roulette);
+      schedule_.iteration_done(iteration, summary.useful, in.efficiency);
       pixel_radius_.end_iteration();
       ++stats_.map_iterations;
     }
@@ -319,18 +314,24 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     return s;
   }
 
+  // The photon and light paths' tracer for the scene as it is now.
+  PhotonTracer tracer() const {
+    sdk::TimedScene scene = timed_scene();
+    scene.timed = merge_.clock.timed();  // a moving camera alone leaves photons untimed
+    return PhotonTracer(host().get(), services(), light_selection(), emitters_, max_depth(), scene,
+                        spectral());
+  }
+
   nimbus_status_t photon_pass(uint32_t j, uint64_t paths, float filter_reach, PhotonPass::Result &result) {
     const nimbus_host_t *h = host().get();
     const uint32_t pass = uint32_t(split_.frame_number(j));  // keys its random numbers, as the radius
     if (progress_) progress_->report(h, 0, paths, "photons");
-    sdk::TimedScene scene = timed_scene();
-    scene.timed = merge_.clock.timed();  // a moving camera alone leaves photons untimed
-    PhotonTracer tracer(h, services(), light_selection(), emitters_, max_depth(), scene, spectral());
+    PhotonTracer tracer = this->tracer();
     // Guided once some lookup has marked where the camera needs photons; a resumed render's rebuild finds
     // the frozen map its pass used in the saved state. A guided map's photons are not splatted.
     if (!rebuild_map_) pass_importance_ = guide_ ? importance_ : ImportanceMap(scene_center_, scene_radius_);
     const bool guided = guide_ && !pass_importance_.empty();
-    tracer.connect_to(guided ? SplatCamera{} : splat_camera_);
+    lens_.bind(tracer, guided);
     if (guided) {
       if (nimbus_status_t s = pass_.run_guided(tracer, guide_, pass_importance_, tasks_, h, seed_, pass,
                                                paths, filter_reach, result);
@@ -349,7 +350,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     merge_.map_paths = result.paths, merge_.importance = &pass_importance_;
     merge_.importance_ratio = result.importance_ratio, merge_.path_use = &pass_.path_use();
     merge_.scene_radius = scene_radius_, merge_.density_weight = density_weights(emitters_);
-    merge_.splat_paths = splat_camera_.enabled && !guided ? double(result.paths) : 0.0;
+    lens_.map_ready(guided, result.paths, merge_);
     photon_work_ = result.traced > 0 ? double(result.work) / double(result.traced) : 0.0;
     return NIMBUS_OK;
   }
@@ -374,7 +375,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   sdk::TaskSplit split_;    // pass j is the frame's pass frame_number(j): docs/farm-rendering.md
   double photon_work_ = 0;  // work units per photon path of the last pass
   PhotonPass pass_;
-  SplatCamera splat_camera_;  // how photon passes connect photons to the lens (photon_splats.hpp)
+  LensConnections lens_;      // splatted photons and light paths (lens_connections.hpp)
   uint64_t map_request_ = 0;  // photon paths asked of the current map's pass
   float map_reach_ = 0;       // and its occupancy filter's reach
   bool rebuild_map_ = false;  // resumed with a map active: trace it again before the next camera pass
@@ -389,7 +390,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   UsefulPixels useful_;
   PixelRadius pixel_radius_;
   LookupRoulette roulette_;
-  static constexpr uint32_t kStateVersion = 9;  // the format of save_state's bytes
+  static constexpr uint32_t kStateVersion = 10;  // the format of save_state's bytes
   SolverStats stats_;
 };
 

@@ -122,7 +122,7 @@ class EmitterSet {
   // host for its own density there: what the photon tracer samples with.
   float finite_pdf_dir(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w, float time = 0) const {
     float pdf_pos = 0, own_pdf = 0;
-    host_pdfs(l, z, n, w, time, pdf_pos, own_pdf);
+    own_pdfs(l, z, n, w, time, pdf_pos, own_pdf);
     return pdf_dir(l, z, w, own_pdf);
   }
   // The direction density of that mixture at w, given the host's own density there.
@@ -195,19 +195,18 @@ class EmitterSet {
       return environments_[l] ? sel * sun_pdf_pos(l, p, w) * environments_[l]->pdf(-w) : 0.0f;
     if (e.infinite()) {
       float pdf_pos = 1, pdf_dir = 1;  // a delta direction: the SDK's convention
-      if (!e.delta_direction()) host_pdfs(l, z, n, w, 0, pdf_pos, pdf_dir);
+      if (!e.delta_direction()) own_pdfs(l, z, n, w, 0, pdf_pos, pdf_dir);
       return sel * sun_pdf_pos(l, p, w) * pdf_dir;
     }
     float pdf_pos = 1, own_pdf = 0;
-    host_pdfs(l, z, n, w, time, pdf_pos, own_pdf);
+    own_pdfs(l, z, n, w, time, pdf_pos, own_pdf);
     if (e.delta_position()) pdf_pos = 1;
     return sel * pdf_pos * pdf_dir(l, z, w, own_pdf);
   }
 
- private:
   // The host's own densities of light l; a moving light's where it is at `time`.
-  void host_pdfs(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w, float time, float &pdf_pos,
-                 float &pdf_dir) const {
+  void own_pdfs(uint32_t l, const Vec3f &z, const Vec3f &n, const Vec3f &w, float time, float &pdf_pos,
+                float &pdf_dir) const {
     float za[3], na[3], wa[3];
     z.store(za), n.store(na), w.store(wa);
     if (emitters_[l].moves() && NIMBUS_HAS_MEMBER(lights_, nimbus_host_lights_v1_t, pdf_emission_at))
@@ -227,6 +226,8 @@ class EmitterSet {
     });
     return env;
   }
+
+ private:
   // An aim's cone from emission point z: fixed for a resting point or spot light, from z itself for area
   // lights and for lights that move.
   EmissionCone cone_of(const Emitter &e, const Aim &a, const Vec3f &z) const {

@@ -71,8 +71,14 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     density_count += ph.light() < mc.density_weight.size() ? mc.density_weight[ph.light()] : 1.0f;
     const Rgb fr = Rgb::load(f);
     if (is_black(fr)) return;
+    // The light-tracing technique, with the photon's density against its (light_paths.hpp).
+    Mis lt = 0;
+    if (s == 1 ? mis_state.lt_first > 0 : mis_state.lt > 0) {
+      const Mis rho = std::exp2(Mis(mc.map->lt_of(ph)));
+      if (rho > 0) lt = mis_state.lt_times(s == 1 ? rho : mis(Mis(pdf_rev)) * rho, s == 1);
+    }
     const float w = merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
-                                 m_neff_b, mis_state.gamma_sum(k), mis_state.clamped, eta_splat);
+                                 m_neff_b, mis_state.gamma_sum(k), mis_state.clamped, eta_splat, lt);
     const float kernel = kernel_norm * (1 - d2 / r2) * in_time;
     const Rgb c = fr * power * (w * kernel);
     if (!is_finite(c) || is_black(c)) return;

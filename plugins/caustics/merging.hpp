@@ -14,6 +14,7 @@
 #include "caustics_record.hpp"
 #include "emitters.hpp"
 #include "importance_map.hpp"
+#include "light_paths.hpp"
 #include "lookup_roulette.hpp"
 #include "mis.hpp"
 #include "occupancy_filter.hpp"
@@ -55,6 +56,10 @@ struct MergeContext {
   double splat_paths = 0;
   Vec3f view_axis{0, 0, 1};
   float theta_pix = 0;
+  // The light-tracing technique (light_paths.hpp): N_lt, its light paths per camera pass (0: off), and
+  // their emission.
+  double lt_paths = 0;
+  const LightPathEmission *lt_emission = nullptr;
   // Lookup probability per class of rough vertex (lookup_roulette.hpp), set before each camera pass.
   std::array<float, kLookupClasses> lookup_probability{1.0f, 1.0f};
   // The merge technique's factor on the photon density in MIS at a class of lookup vertex: its lookup
@@ -75,6 +80,18 @@ inline MergeDensities merge_densities(const MergeContext &mc, float r, float nef
   const float q_mis = mc.lookup_mis_density(cls), r2 = r * r;
   return {mis(kPi * r2 * Mis(neff) * q_mis), mis(Mis(neff) * q_mis),
           mis(Mis(mc.map_paths) * mc.lookup_mis_density(kLaterLookup) * rho)};
+}
+
+// The densities of the first lookup of a camera path through `pixel` whose first vertex lies at
+// distance `length` (the pixel's radius, the first lookup's probability, the time window around time_u):
+// what a connection of x_1 to the lens competes with (the splat and light-tracing techniques).
+inline MergeDensities first_merge_densities(const MergeContext &mc, const PixelRadius &pixel_radius,
+                                            size_t pixel, float length, float time_u) {
+  const TimeWindow window = mc.clock.window(time_u, mc.time_half_width);
+  const float neff = float(mc.map_paths) * window.rho;
+  const float r =
+      pixel_radius.radius(pixel, merge_radius(mc.radius_per_length, length, mc.scene_radius), neff);
+  return merge_densities(mc, r, neff, kFirstLookup, window.rho);
 }
 
 // The most a photon of a rarely chosen light counts in a pixel's photon density.
@@ -192,7 +209,12 @@ class MergingPath {
   sdk::PathWeight hit(const sdk::LightHit &h) const {
     const float nee_ratio = h.specular ? 0.0f : mis(h.light_pdf / h.bsdf_pdf);
     const float lp = hit_lp(*mc_.emitters, h);
-    return {hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped),
+    Mis lt = 0;
+    if (mis_.lt > 0) {
+      const float lp_lt = mc_.lt_emission->lp(*mc_.emitters, h.light, h.p, h.n, h.wo);
+      if (lp_lt > 0) lt = mis_.lt_times(mis(Mis(lp_lt)), false);
+    }
+    return {hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped, lt),
             lp > 0 && mis_.eligible(h.segments)};
   }
 
@@ -210,8 +232,12 @@ class MergingPath {
       neff_ = effective_photons(mc_, Vec3f::load(v.ix->p)) * window_.rho;
     }
     eta_splat_ = 0;
-    if (lookup_ && v.segments == 1 && mc_.splat_paths > 0)
-      eta_splat_ = splat_eta(mc_.splat_paths, camera_density(length_, cos_first_, axis_cos_, mc_.theta_pix));
+    if (lookup_ && v.segments == 1 && (mc_.splat_paths > 0 || mc_.lt_paths > 0)) {
+      const double c1 = camera_density(length_, cos_first_, axis_cos_, mc_.theta_pix);
+      eta_splat_ = mc_.splat_paths > 0 ? splat_eta(mc_.splat_paths, c1) : 0.0;
+      // The light-tracing technique connects rough first vertices (light_paths.hpp).
+      mis_.lt_first = mc_.lt_paths > 0 ? mis(splat_eta(mc_.lt_paths, c1)) : 0.0;
+    }
     if (lookup_ && cls == kFirstLookup) {
       const float r = merge_radius(mc_.radius_per_length, length_, mc_.scene_radius);
       radius_ = pixel_radius_.radius(pixel_, r, neff_);
@@ -244,15 +270,24 @@ class MergingPath {
     const float d2 = infinite ? 1.0f : ls.dist * ls.dist;
     float nk = s.pmf;  // delta lights
     if (!s.delta) nk = infinite ? s.light_pdf : s.light_pdf * std::abs(dot(Vec3f::load(ls.n), s.wi)) / d2;
+    Mis lt = 0;
+    const bool first = s.segments == 2;  // NEE from x_1: the light path's x_1 is the connected vertex
+    if (first ? mis_.lt_first > 0 : mis_.lt > 0) {
+      const float lp_lt =
+          mc_.lt_emission->lp(*mc_.emitters, s.light, Vec3f::load(ls.p), Vec3f::load(ls.n), -s.wi, s.time);
+      const Mis ratio = mis(Mis(lp_lt) * (cos_j / d2) / nk);
+      if (lp_lt > 0) lt = mis_.lt_times(first ? ratio : mis(Mis(s.bsdf_pdf_rev)) * ratio, first);
+    }
     const float w =
-        nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk, mis_.clamped);
+        nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk, mis_.clamped, lt);
     return {w, lp > 0 && mis_.eligible(s.segments)};
   }
 
   void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
                uint32_t segments) {
+    const bool lt = segments == 1 && !has(bs.lobe, NIMBUS_LOBE_SPECULAR);
     mis_.scatter(std::abs(dot(Vec3f::load(ix.ng), wi)), bs.pdf, bs.pdf_rev, lookup_, segments,
-                 kPi * Mis(radius_) * radius_ * Mis(neff_) * q_mis_, eta_splat_);
+                 kPi * Mis(radius_) * radius_ * Mis(neff_) * q_mis_, eta_splat_, lt ? mis_.lt_first : 0.0);
   }
 
  private:

@@ -184,12 +184,17 @@ struct CameraMis {
   uint32_t rough_count = 0;                // rough vertices among x_1 .. x_j (after append)
   uint32_t d_photon = kPhotonMaxVertices;  // the photon tracer's D_photon (tests vary it)
   int exp2 = 0;                            // every R is terms[i].R * 2^exp2
-  mutable bool clamped = false;            // a weight's competitors overflowed (see the top)
+  // The light-tracing technique (light_paths.hpp), always eligible once x_1 scattered non-deltaly: its
+  // R (times 2^exp2), and before that x_1's mis(eta_lt) (unscaled), which NEE from x_1 and merges at x_1
+  // read. Its emission density lp_lt is its own, so it is summed apart from the merge terms.
+  Mis lt = 0, lt_first = 0;
+  mutable bool clamped = false;  // a weight's competitors overflowed (see the top)
 
   // Arrival at x_{j+1}: c_in = |cos| at it. Not called for escaped rays (infinite lights).
   void arrive(float c_in) {
     const Mis m = mis(Mis(c_in));
     for (uint32_t i = 0; i < n_terms; ++i) terms[i].R /= m;
+    lt /= m;
     rescale();
   }
   // Appends the class of the scattering vertex just reached. Returns true when it is a lookup vertex
@@ -214,8 +219,9 @@ struct CameraMis {
   // (then a new term starts with eta_j = pi r_j^2 * Neff(x_j) * rho(x_j)). eta_splat: at x_1, the splat
   // technique's eta (splat_eta; 0 without one), which samples the same paths as the merge there. Terms
   // that can no longer be merge techniques (dead, or too far from any later emitter for D_photon) are
-  // dropped first.
-  void scatter(float c_out, float w_fwd, float w_rev, bool lookup, uint32_t j, Mis eta, Mis eta_splat = 0) {
+  // dropped first. eta_lt: at x_1 scattering non-deltaly, mis(eta_lt) of the light-tracing technique.
+  void scatter(float c_out, float w_fwd, float w_rev, bool lookup, uint32_t j, Mis eta, Mis eta_splat = 0,
+               Mis eta_lt = 0) {
     const Mis g = mis(Mis(c_out) / w_fwd);
     const Mis r = mis(Mis(w_rev));
     uint32_t n = 0;
@@ -229,11 +235,21 @@ struct CameraMis {
     if (lookup && n_terms < kMaxCameraTerms)
       terms[n_terms++] =
           CameraTerm{std::ldexp(g * (mis(eta) + mis(eta_splat)), -exp2), j, false, false, false};
+    lt = lt * g * r + (eta_lt > 0 ? std::ldexp(g * eta_lt, -exp2) : 0.0);
     rescale();
   }
   void rescale() {
     renormalise(
-        n_terms, [this](uint32_t i) -> Mis & { return terms[i].R; }, exp2);
+        n_terms + 1, [this](uint32_t i) -> Mis & { return i < n_terms ? terms[i].R : lt; }, exp2);
+  }
+  // The light-tracing technique's competitor value at a path end where the camera side alone supplies
+  // the rest of the ratio `factor` (times mis(lp_lt) and the light side's factors): x_1's eta before its
+  // scatter when the path ends there (first), else R.
+  Mis lt_times(Mis factor, bool first) const {
+    if (first) return lt_first * factor;
+    const Mis v = std::ldexp(lt * factor, exp2);
+    if (!(v <= std::numeric_limits<Mis>::max())) clamped = true;
+    return v;
   }
   // S_cam: sum of R over the merge techniques eligible for a path of k segments that ends here (an
   // emitter hit at x_k, or NEE from x_{k-1}): E3 on the camera vertices after s, and x_{k-1} (the last
@@ -278,19 +294,20 @@ inline float mis_weight(Mis others) {
 //   w_rev:      omega^L_j(z ->): pdf of scattering from the light's direction back to x_{j-1}
 //   s_cam:      CameraMis::s_cam(j + 1) after appending x_j
 //   lp, g, nk:  emitter product, receiver geometry (cos_j / d^2, or cos_j), NEE area density
+//   lt:         the light-tracing technique's ratio (CameraMis::lt_times; 0 without it)
 inline float nee_weight(float hit_ratio, float w_rev, const MisSum &s_cam, float lp, float g, float nk,
-                        bool &clamped) {
+                        bool &clamped, Mis lt = 0) {
   Mis merges = 0;
   if (s_cam.sum > 0 && lp > 0) merges = s_cam.times(mis(Mis(w_rev)) * mis(Mis(lp) * g / nk), clamped);
-  return mis_weight(hit_ratio + merges);
+  return mis_weight(hit_ratio + merges + lt);
 }
 
 // Weight of a BSDF-sampled emitter hit. nee_ratio = q_N / q_H (nimbus.pt's ratio; 0 when NEE could not
 // have sampled it); s_cam after arrival (finite emitters) or after the scatter (infinite ones).
-inline float hit_weight(float nee_ratio, const MisSum &s_cam, float lp, bool &clamped) {
+inline float hit_weight(float nee_ratio, const MisSum &s_cam, float lp, bool &clamped, Mis lt = 0) {
   Mis merges = 0;
   if (s_cam.sum > 0 && lp > 0) merges = s_cam.times(mis(Mis(lp)), clamped);
-  return mis_weight(nee_ratio + merges);
+  return mis_weight(nee_ratio + merges + lt);
 }
 
 // Weight of merging photon (A, B, b_valid, prev_rough, depth) at lookup vertex x_s.
@@ -300,12 +317,13 @@ inline float hit_weight(float nee_ratio, const MisSum &s_cam, float lp, bool &cl
 //               vertices) (v1: Neff is the same everywhere)
 //   gamma_sum:  CameraMis::gamma_sum(s + depth) (its terms carry their own eta)
 //   eta_splat:  at x_1, mis(splat_eta) of the splat technique (0 elsewhere and without one)
+//   lt:         the light-tracing technique's ratio to the merge times eta (0 without it)
 inline float merge_weight(float log2_A, float log2_B, bool b_valid, bool prev_rough, float w_cam_fwd,
                           float w_cam_rev, Mis eta, Mis neff, Mis neff_b, const MisSum &gamma_sum,
-                          bool &clamped, Mis eta_splat = 0) {
+                          bool &clamped, Mis eta_splat = 0, Mis lt = 0) {
   Mis light = std::exp2(Mis(log2_A)) / eta;
   if (b_valid) light += std::exp2(Mis(log2_B)) * neff_b / neff;
-  Mis others = mis(Mis(w_cam_fwd)) * light + (eta_splat > 0 ? eta_splat / eta : 0.0);
+  Mis others = mis(Mis(w_cam_fwd)) * light + (eta_splat > 0 || lt > 0 ? (eta_splat + lt) / eta : 0.0);
   if (!(others <= std::numeric_limits<Mis>::max())) clamped = true;
   if (!prev_rough && gamma_sum.sum > 0) others += gamma_sum.times(mis(Mis(w_cam_rev)) / eta, clamped);
   return mis_weight(others);
@@ -329,12 +347,13 @@ inline double camera_density(float d, float cos_1, float cos_axis, float theta_p
 }
 // Weight of splatting photon (A, B, b_valid) at x_1: the merge at x_1 and every technique that merge
 // competes with (its arguments as merge_weight's), relative to the splat's eta_splat = mis(splat_eta).
+// lt: the light-tracing technique's ratio to the merge at x_1 times eta (0 without it).
 inline float splat_weight(float log2_A, float log2_B, bool b_valid, float w_cam_fwd, Mis eta, Mis neff,
-                          Mis neff_b, Mis eta_splat, bool &clamped) {
+                          Mis neff_b, Mis eta_splat, bool &clamped, Mis lt = 0) {
   if (!(eta_splat > 0)) return 0.0f;
   Mis light = std::exp2(Mis(log2_A));
   if (b_valid && neff > 0) light += std::exp2(Mis(log2_B)) * neff_b * eta / neff;
-  const Mis others = (eta + mis(Mis(w_cam_fwd)) * light) / eta_splat;
+  const Mis others = (eta + mis(Mis(w_cam_fwd)) * light + lt) / eta_splat;
   if (!(others <= std::numeric_limits<Mis>::max())) clamped = true;
   return mis_weight(others);
 }

@@ -82,9 +82,11 @@ struct Photon : PhotonData {
   float B_importance, B_importance2;
   float time_u;  // its path's time as a share of the exposure (photon_windows.hpp); 0 when nothing moves
   float lambda;  // its wavelength (nm) after a dispersive vertex, its power then the value at it; else 0
+  // log2 of rho = mis(lp_lt / lp) against the light-tracing technique (light_paths.hpp; -inf: none)
+  float lt;
   Vec3f position() const { return Vec3f::load(p); }
 };
-static_assert(sizeof(Photon) == 64, "photon layout");
+static_assert(sizeof(Photon) == 68, "photon layout");
 
 class PhotonKdTree {
  public:
@@ -95,7 +97,7 @@ class PhotonKdTree {
   // with_times, with_lambdas: keep the photons' times and wavelengths too (only when something moves or
   // disperses light, spec 7).
   void build(const std::vector<Photon> &photons, const ParallelFor &parallel = serial_for, float reach = 0,
-             bool with_times = false, bool with_lambdas = false) {
+             bool with_times = false, bool with_lambdas = false, bool with_lt = false) {
     n_ = photons.size();
     uint32_t depth = 0;
     while (((n_ + (size_t(1) << depth) - 1) >> depth) > kLeafSize) ++depth;
@@ -144,12 +146,14 @@ class PhotonKdTree {
     paths_.resize(n_);
     times_.resize(with_times ? n_ : 0);
     lambdas_.resize(with_lambdas ? n_ : 0);
+    lts_.resize(with_lt ? n_ : 0);
     parallel_ranges(parallel, n_, kChunk, [&](size_t b, size_t e) {
       for (size_t k = b; k < e; ++k) {
         const Photon &ph = photons[keys[k].index];
         positions_[k] = Vec3f::load(keys[k].p), data_[k] = ph, paths_[k] = ph.path;
         if (with_times) times_[k] = ph.time_u;
         if (with_lambdas) lambdas_[k] = ph.lambda;
+        if (with_lt) lts_[k] = ph.lt;
       }
     });
     filter_.build(
@@ -160,8 +164,9 @@ class PhotonKdTree {
   const PhotonData *data() const { return data_.data(); }  // in tree order
   // Bytes of the map: photons, kd-tree nodes, occupancy filter.
   size_t bytes() const {
-    return n_ * (sizeof(Vec3f) + sizeof(PhotonData)) + (times_.size() + lambdas_.size()) * sizeof(float) +
-           nodes_.size() * sizeof(Node) + filter_.bytes();
+    return n_ * (sizeof(Vec3f) + sizeof(PhotonData)) +
+           (times_.size() + lambdas_.size() + lts_.size()) * sizeof(float) + nodes_.size() * sizeof(Node) +
+           filter_.bytes();
   }
   float filter_reach() const { return filter_.reach(); }
   // The photon path of a photon query() handed out.
@@ -171,6 +176,10 @@ class PhotonKdTree {
   // The wavelength of a photon query() handed out (a map built with_lambdas; 0 for an RGB photon).
   float lambda_of(const PhotonData &ph) const { return lambdas_[size_t(&ph - data_.data())]; }
   bool has_lambdas() const { return !lambdas_.empty(); }
+  // A photon's log2 rho against the light-tracing technique (a map built with_lt; else -inf: none).
+  float lt_of(const PhotonData &ph) const {
+    return lts_.empty() ? -kInfinity : lts_[size_t(&ph - data_.data())];
+  }
 
   // False only if no photon lies within r of q: the map's bounds, then the occupancy filter. query()
   // asks it first; most lookups end there.
@@ -277,6 +286,7 @@ class PhotonKdTree {
   std::vector<uint32_t> paths_;   // in tree order: each photon's path
   std::vector<float> times_;      // in tree order: each photon's time (maps built with_times)
   std::vector<float> lambdas_;    // in tree order: each photon's wavelength (maps built with_lambdas)
+  std::vector<float> lts_;        // in tree order: each photon's log2 rho (maps built with_lt)
   std::vector<Key> keys_;         // build()'s scratch
   Vec3f lo_, hi_;                 // bounds of all photons
   OccupancyFilter filter_;

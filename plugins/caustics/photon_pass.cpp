@@ -72,7 +72,8 @@ void PhotonPass::assemble(const sdk::ParallelFor &parallel, float filter_reach, 
     for (const PhotonSplat &sp : c.splats) *splat = sp, (splat++)->photon = sp.photon + uint32_t(offset[i]);
   });
   use_.reset(std::move(lights), std::move(cells));
-  map_.build(photons_, parallel, filter_reach, tracer.timed(), tracer.dispersive());
+  map_.build(photons_, parallel, filter_reach, tracer.timed(), tracer.dispersive(),
+             tracer.rates_light_paths());
 }
 
 float PhotonPass::filter_reach(sdk::PerWorker<RadiusHistogram> &lookup_radii) {

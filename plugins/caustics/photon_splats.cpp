@@ -22,17 +22,14 @@ struct SplatJob {
 
 // The weight of splat s of photon ph: the merge at x_1 it competes with is the one a camera path through
 // the same pixel would look up with (the pixel's radius, the first lookup's probability, the time
-// window around the photon's own time, since the path's camera time is the photon's).
+// window around the photon's own time, since the path's camera time is the photon's); and the
+// light-tracing technique, with the photon's density against its (light_paths.hpp).
 float weight(const MergeContext &mc, const PixelRadius &pixel_radius, size_t pixel, const PhotonSplat &s,
              const Photon &ph, bool &clamped) {
-  const double paths = double(mc.map_paths);
-  const TimeWindow window = mc.clock.window(ph.time_u, mc.time_half_width);
-  const float neff = float(paths) * window.rho;
-  const float r =
-      pixel_radius.radius(pixel, merge_radius(mc.radius_per_length, s.length, mc.scene_radius), neff);
-  const MergeDensities d = merge_densities(mc, r, neff, kFirstLookup, window.rho);
+  const MergeDensities d = first_merge_densities(mc, pixel_radius, pixel, s.length, ph.time_u);
+  const Mis lt = mc.lt_paths > 0 ? mis(splat_eta(mc.lt_paths, s.density)) * std::exp2(Mis(ph.lt)) : 0.0;
   return splat_weight(ph.A, ph.B, ph.b_valid(), s.w_cam, d.eta, d.neff, d.neff_b,
-                      mis(splat_eta(paths, s.density)), clamped);
+                      mis(splat_eta(double(mc.map_paths), s.density)), clamped, lt);
 }
 
 void splat_range(const nimbus_thread_ctx_t *ctx, uint64_t begin, uint64_t end, void *user) {

@@ -99,15 +99,12 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
   if (is_black(beta) || !is_finite(beta)) return target;
   PhotonMis mis_state;
   mis_state.emit(em.hittable(), cos_e, lp);
+  const float lt_ratio =
+      lt_ ? density_ratio_log2(lt_->lp(emitters_, light, org, n_e, dir0, time), lp) : -kInfinity;
   // RGB until a dispersive vertex, then one wavelength and the scalar power at it (spec 7.2).
   sdk::PathSpectrum spectrum(h, spectral_, svc_.bsdf);
 
-  nimbus_ray_t ray;
-  org.store(ray.org);
-  dir0.store(ray.dir);
-  ray.tnear = (es.flags & NIMBUS_LIGHT_AREA) ? relative_offset(org) : 0;
-  ray.tfar = kInfinity;
-  ray.mask = ~0u, ray.flags = 0;
+  nimbus_ray_t ray = sdk::emission_ray(org, dir0, es.flags);
 
   bool had_sharp = false, prev_rough = false;
   for (uint32_t depth = 1; depth <= kPhotonMaxVertices; ++depth) {
@@ -153,6 +150,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
       ph.path = path_index;
       ph.time_u = time_u;
       ph.lambda = spectrum.lambda();
+      ph.lt = lt_ratio;
       out.photons.push_back(ph);
       out.work += kPhotonWork;
       if (splat_.enabled) connect_to_lens(ctx, ix, wo, beta, time, hash_keys({path, depth}), out);
@@ -191,34 +189,49 @@ void PhotonTracer::connect_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_
                                    PhotonChunk &out) const {
   const uint64_t u = hash_keys({key, 0x6c656e73});
   const float lens_u[2] = {float(u >> 40) * 0x1p-24f, float((u >> 16) & 0xffffffu) * 0x1p-24f};
-  float raster[2], lens[3];
-  const float we = scene_.connect(h_, ix.p, time, lens_u, raster, lens);
-  if (!(we > 0)) return;
-  const Vec3f p = Vec3f::load(ix.p), ng = Vec3f::load(ix.ng), to_lens = Vec3f::load(lens) - p;
-  const float d = length(to_lens);
-  if (!(d > 0)) return;
-  const Vec3f wc = to_lens / d;
-  if (!(dot(ng, wc) * dot(ng, wo) > 0)) return;
-  float wo_arr[3], wc_arr[3], f[3], f_cam[3], pdf_cam = 0;
-  wo.store(wo_arr), wc.store(wc_arr);
-  // The light tracer's value (importance transport), and the camera path's pdf of the photon's direction
-  // as its merge evaluates it.
-  svc_.bsdf->eval(h_, &ix, wo_arr, wc_arr, NIMBUS_MODE_IMPORTANCE, f, nullptr, nullptr);
-  svc_.bsdf->eval(h_, &ix, wc_arr, wo_arr, NIMBUS_MODE_RADIANCE, f_cam, &pdf_cam, nullptr);
-  const Rgb value = beta * Rgb::load(f) * (std::abs(dot(Vec3f::load(ix.ns), wc)) * we);
-  if (is_black(value) || !is_finite(value) || !(pdf_cam > 0)) return;
-  nimbus_ray_t ray;
-  svc_.scene->spawn_ray_to(h_, &ix, lens, &ray);
-  out.work += kRayWork;
-  if (scene_.occluded(h_, ctx, ray, time)) return;
+  LensLink link;
+  if (!link_to_lens(ctx, ix, wo, beta, lens_u, time, true, splat_.axis, splat_.theta_pix, link, out.work))
+    return;
   PhotonSplat s;
-  s.raster[0] = raster[0], s.raster[1] = raster[1];
-  value.store(s.value);
-  s.w_cam = pdf_cam;
-  s.density = float(camera_density(d, dot(ng, wc), dot(splat_.axis, -wc), splat_.theta_pix));
-  s.length = d;
+  s.raster[0] = link.raster[0], s.raster[1] = link.raster[1];
+  link.value.store(s.value);
+  s.w_cam = link.w_cam;
+  s.density = float(link.density);
+  s.length = link.length;
   s.photon = uint32_t(out.photons.size() - 1);
   if (s.density > 0 && std::isfinite(s.density)) out.splats.push_back(s);
+}
+
+// The light tracer's connection of vertex ix to the lens point lens_u picks: its value (importance
+// transport), the camera path's pdf of the vertex's incoming direction (as a merge evaluates it), and
+// the camera paths' density of first vertices there. False when the lens does not see it, or (with
+// reflection_only) sees its other side.
+bool PhotonTracer::link_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix,
+                                const Vec3f &wo, const Rgb &beta, const float lens_u[2], float time,
+                                bool reflection_only, const Vec3f &axis, float theta_pix, LensLink &link,
+                                uint64_t &work) const {
+  float lens[3];
+  const float we = scene_.connect(h_, ix.p, time, lens_u, link.raster, lens);
+  if (!(we > 0)) return false;
+  const Vec3f p = Vec3f::load(ix.p), ng = Vec3f::load(ix.ng), to_lens = Vec3f::load(lens) - p;
+  link.length = length(to_lens);
+  if (!(link.length > 0)) return false;
+  const Vec3f wc = to_lens / link.length;
+  link.same_side = dot(ng, wc) * dot(ng, wo) > 0;
+  if (reflection_only && !link.same_side) return false;
+  float wo_arr[3], wc_arr[3], f[3], f_cam[3];
+  wo.store(wo_arr), wc.store(wc_arr);
+  link.w_cam = 0;
+  svc_.bsdf->eval(h_, &ix, wo_arr, wc_arr, NIMBUS_MODE_IMPORTANCE, f, nullptr, nullptr);
+  svc_.bsdf->eval(h_, &ix, wc_arr, wo_arr, NIMBUS_MODE_RADIANCE, f_cam, &link.w_cam, nullptr);
+  link.value = beta * Rgb::load(f) * (std::abs(dot(Vec3f::load(ix.ns), wc)) * we);
+  if (is_black(link.value) || !is_finite(link.value) || !(link.w_cam > 0)) return false;
+  link.density = camera_density(link.length, dot(ng, wc), dot(axis, -wc), theta_pix);
+  if (!(link.density > 0) || !std::isfinite(link.density)) return false;
+  nimbus_ray_t ray;
+  svc_.scene->spawn_ray_to(h_, &ix, lens, &ray);
+  work += kRayWork;
+  return !scene_.occluded(h_, ctx, ray, time);
 }
 
 // Radiance (area) or intensity (point, spot) that finite light `light` emits from es.org along w.

@@ -17,6 +17,7 @@
 
 #include "emitters.hpp"
 #include "importance_map.hpp"
+#include "light_paths.hpp"
 #include "mis.hpp"
 #include "path_use.hpp"
 #include "photon_map.hpp"
@@ -85,6 +86,16 @@ class PhotonSamples {
   uint32_t dims_ = 0, used_ = 0;
 };
 
+// A vertex's unoccluded connection to the lens (PhotonTracer::link_to_lens).
+struct LensLink {
+  float raster[2];
+  Rgb value;       // beta * f * |cos| * W at the lens: its light at the film before 1 / N and MIS
+  float w_cam;     // omega^C_1: pdf that a camera path at the vertex samples its incoming direction
+  double density;  // C_1: the camera paths' density of first vertices there (mis.hpp, camera_density)
+  float length;    // distance from the lens
+  bool same_side;  // the lens sees the side the vertex's light arrived on (a merge there finds it)
+};
+
 // Traces photon paths against the scene, reading only state that is fixed during a photon pass.
 class PhotonTracer {
  public:
@@ -106,6 +117,11 @@ class PhotonTracer {
   // called, or disabled, no photon is.
   void connect_to(const SplatCamera &camera) { splat_ = camera; }
 
+  // [main-thread] With the light-tracing technique on, photons carry their density against its
+  // (light_paths.hpp); null: off.
+  void light_paths_from(const LightPathEmission *lt) { lt_ = lt; }
+  bool rates_light_paths() const { return lt_ != nullptr; }
+
   // Whether its photons carry scene times, and wavelengths after a dispersive vertex.
   bool timed() const { return scene_.timed; }
   bool dispersive() const { return spectral_ != nullptr; }
@@ -118,11 +134,21 @@ class PhotonTracer {
   // the path's target T: the largest importance at its stored photons (spec 6.3); else 0.
   float trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples, uint64_t path, uint64_t paths,
               const ImportanceMap *importance, PhotonChunk &out) const;
+  // [render-thread] Light path `path` of the `in.merge->lt_paths` of a camera pass (light_paths.cpp): its
+  // connections to the lens go to the film with their weights.
+  void trace_light(const nimbus_thread_ctx_t &ctx, uint64_t path, const LightTracing &in,
+                   LightTally &out) const;
 
  private:
   Rgb emitted(uint32_t light, const nimbus_light_emission_t &es, const Vec3f &w, float time) const;
   void connect_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix, const Vec3f &wo,
                        const Rgb &beta, float time, uint64_t key, PhotonChunk &out) const;
+  bool link_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix, const Vec3f &wo,
+                    const Rgb &beta, const float lens_u[2], float time, bool reflection_only,
+                    const Vec3f &axis, float theta_pix, LensLink &link, uint64_t &work) const;
+  void connect_light_vertex(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix, const Vec3f &wo,
+                            const Rgb &beta, const PhotonMis &state, const LightVertexClass &c,
+                            const float lens_u[2], const LightTracing &in, LightTally &out) const;
   Mis first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
                        const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const;
 
@@ -134,6 +160,7 @@ class PhotonTracer {
   sdk::TimedScene scene_;
   const nimbus_host_spectral_v1_t *spectral_;
   SplatCamera splat_;
+  const LightPathEmission *lt_ = nullptr;
 };
 
 }  // namespace nimbus::caustics

@@ -17,9 +17,10 @@ struct SolverStats {
   uint64_t mis_clamped = 0;
   uint64_t first_lookups = 0, shrunk_lookups = 0;  // first lookups, and those with a per-pixel radius
   uint64_t guided_passes = 0, proposals = 0, accepted = 0;
-  uint64_t used_paths = 0;    // photon paths of finished maps that some lookup used
-  uint64_t splats = 0;        // stored photons the lens sees (photon_splats.hpp), over the passes
-  double photon_seconds = 0;  // photon tracing and kd-tree builds
+  uint64_t used_paths = 0;  // photon paths of finished maps that some lookup used
+  uint64_t splats = 0;      // stored photons the lens sees (photon_splats.hpp), over the passes
+  uint64_t light_paths = 0, light_splats = 0;  // the light-tracing technique's (light_paths.hpp)
+  double photon_seconds = 0;                   // photon tracing and kd-tree builds
   // The flux each pass's stored photons carry (the luminance of their powers over the pass's uniform path
   // count, as lookups normalise them): its sum and sum of squares over the passes. Every pass estimates
   // the same flux independently, so their spread gives its standard error (energy tests, spec 10 v).
@@ -60,6 +61,8 @@ struct SolverStats {
     progress->stat_add(h, "caustics_map_iterations", double(map_iterations));
     progress->stat_add(h, "caustics_photon_seconds", photon_seconds);
     progress->stat_add(h, "caustics_splats", double(splats));
+    progress->stat_add(h, "caustics_light_paths", double(light_paths));
+    progress->stat_add(h, "caustics_light_splats", double(light_splats));
     // The flux of a pass's stored photons: the mean over the passes and its standard error.
     const double mean_flux = passes > 0 ? flux_sum / double(passes) : 0.0;
     const double flux_var =

@@ -156,12 +156,7 @@ class LightTracer final : public sdk::Integrator {
     Rgb beta = Le * (cos_e / (pmf * em.pdf_pos * em.pdf_dir));
     const float beta_emitted = max_component(beta);
     sdk::PathSpectrum spectrum(h, spectral_, bsdf_);  // RGB until a dispersive vertex
-    nimbus_ray_t ray;
-    org.store(ray.org);
-    dir.store(ray.dir);
-    ray.tnear = (em.flags & NIMBUS_LIGHT_AREA) ? relative_offset(org) : 0;
-    ray.tfar = kInfinity;
-    ray.mask = ~0u, ray.flags = 0;
+    nimbus_ray_t ray = sdk::emission_ray(org, dir, em.flags);
 
     // Vertex i (1-based) closes a path of i + 1 segments with the camera connection.
     for (uint32_t i = 1; i + 1 <= max_depth_; ++i) {

@@ -37,6 +37,9 @@ struct SyntheticPath {
   double ratio = 0;
   // The splat technique (photon_splats.hpp): its eta N_u / C_1 at x_1 (0: photons are not splatted).
   double splat = 0;
+  // The light-tracing technique (light_paths.hpp): its eta N_lt / C_1 at x_1 (0: off) and lp_lt, its
+  // emission density (0 for infinite lights, which emit no light paths).
+  double lt = 0, lp_lt = 0;
 
   bool finite() const { return light == LightKind::Area || light == LightKind::Point; }
   bool hittable() const { return light == LightKind::Area || light == LightKind::Infinite; }
@@ -107,6 +110,11 @@ inline SyntheticPath random_path(std::mt19937_64 &g, double spread = 1e3, uint32
   }
   if (std::uniform_real_distribution<double>(0, 1)(g) < 0.5)
     p.splat = log_uniform(g, 1 / spread, spread) * p.neff;
+  // Light paths are off for guided maps (importance) and infinite lights.
+  if (p.ratio == 0 && std::uniform_real_distribution<double>(0, 1)(g) < 0.6) {
+    p.lt = log_uniform(g, 1 / spread, spread) * p.neff;
+    p.lp_lt = p.finite() ? log_uniform(g, 1 / spread, spread) : 0.0;
+  }
   return p;
 }
 
@@ -115,8 +123,9 @@ struct ClosedForm {
   double qh = 0, qn = 0;
   std::vector<double> qm;  // by s (0 where no technique)
   double qt = 0;           // the splat at x_1: a technique wherever the merge at x_1 is
+  double ql = 0;           // the light-tracing technique: wherever x_1 is rough and lp_lt > 0
   double sum() const {
-    double s = qh * qh + qn * qn + qt * qt;
+    double s = qh * qh + qn * qn + qt * qt + ql * ql;
     for (double q : qm) s += q * q;
     return s;
   }
@@ -171,6 +180,10 @@ inline ClosedForm closed_form(const SyntheticPath &p) {
     f.qm[s] = q * light_pair;
   }
   if (f.qm[1] > 0) f.qt = f.qm[1] * p.splat / (area_at(p, 1) * neff_at(p, 1) * lookup_probability_at(p, 1));
+  if (p.lt > 0 && p.lp_lt > 0 && p.rough(1)) {
+    f.ql = p.lt * p.lp_lt * p.g_last();
+    for (uint32_t j = 1; j + 2 <= k; ++j) f.ql *= L[j];
+  }
   return f;
 }
 

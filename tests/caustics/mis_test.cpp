@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "light_paths.hpp"
 #include "mis_synthetic_paths.hpp"
 
 namespace nimbus::caustics {
@@ -24,12 +25,49 @@ struct PhotonAt {
 struct Weights {
   double wh = 0, wn = 0, wt = 0;  // wt: the splat at x_1 (photon_splats.hpp)
   bool splatted = false;
+  double wl = 0;  // the light path's connection at x_1 (light_paths.hpp)
+  bool light_traced = false;
   std::vector<double> wm;
   bool hit = false, nee = false;
   std::vector<bool> merged;
   bool clamped = false;   // a weight's competitors overflowed double
   bool rescaled = false;  // a state left [2^-400, 2^400] (float would have overflowed long before)
 };
+
+// The light side of the light-tracing technique, as PhotonTracer::trace_light does: PhotonMis with lp_lt
+// along the whole path, the photon tracer's rules for where photons would be stored, the weight at x_1.
+void light_side(const SyntheticPath &p, Weights &w) {
+  const uint32_t k = p.k;
+  if (!(p.lt > 0) || !(p.lp_lt > 0) || !p.rough(1)) return;
+  const float lp_lt = float(p.lp_lt);
+  PhotonMis lm;
+  lm.emit(p.hittable(), p.light == LightKind::Area ? float(p.cos_prev[k]) : 1.0f, lp_lt);
+  bool had_sharp = false, prev_rough = false, alive = true;
+  for (uint32_t j = k - 1; j >= 1; --j) {
+    const float c_in = float(p.cos_next[j]);
+    lm.arrive(c_in);
+    const bool rough = p.rough(j);
+    Mis E = 0;
+    if (j == k - 1 && !p.delta(j))
+      E = photon_nee_term(true, float(p.nk()), p.finite() ? float(p.d2[k - 1]) : 1.0f, lp_lt, c_in);
+    const bool stored = alive && rough && had_sharp && (k - j) <= p.d_photon;
+    if (j == 1) {
+      const bool v1 = stored && p.lp > 0;
+      const Mis neff = Mis(float(p.neff)), q = Mis(float(p.q_first)), area = Mis(float(p.area));
+      const Mis rho = p.lp > 0 ? mis(Mis(float(p.lp)) / Mis(lp_lt)) : 0.0;
+      w.wl = lt_weight(lm.log2_A(), lm.log2_B(), lm.b_valid, v1, float(p.w_cam[1]), mis(area * neff * q),
+                       mis(neff * q), mis(neff * Mis(float(p.q_later))),
+                       v1 && p.splat > 0 ? mis(Mis(p.splat)) : 0.0, k == 2 ? E : 0.0, rho, mis(Mis(p.lt)),
+                       w.clamped);
+      w.light_traced = true;
+      return;
+    }
+    if (rough && (j == k - 1 || prev_rough)) alive = false;
+    lm.scatter(float(p.cos_prev[j]), float(p.w_light[j]), float(p.w_cam[j]), rough, stored, E);
+    prev_rough = rough;
+    had_sharp = had_sharp || !rough;
+  }
+}
 
 Weights production(const SyntheticPath &p) {
   const uint32_t k = p.k;
@@ -61,9 +99,10 @@ Weights production(const SyntheticPath &p) {
     prev_rough = rough;
     had_sharp = had_sharp || !rough;
   }
-  // Camera side, as trace_pixel<true> does.
   Weights w;
   w.rescaled = rescaled;
+  light_side(p, w);
+  // Camera side, as MergingPath does.
   w.wm.assign(k + 1, 0);
   w.merged.assign(k + 1, false);
   CameraMis cm;
@@ -75,7 +114,8 @@ Weights production(const SyntheticPath &p) {
     if (j == k) {
       if (p.hittable()) {
         const float nee_ratio = p.delta(k - 1) ? 0.0f : mis(float(p.n_omega / p.w_cam[k - 1]));
-        w.wh = hit_weight(nee_ratio, cm.s_cam(k), lp, cm.clamped);
+        const Mis lt = p.lp_lt > 0 && cm.lt > 0 ? cm.lt_times(mis(Mis(float(p.lp_lt))), false) : 0.0;
+        w.wh = hit_weight(nee_ratio, cm.s_cam(k), lp, cm.clamped, lt);
         w.hit = true;
       }
       break;
@@ -89,26 +129,37 @@ Weights production(const SyntheticPath &p) {
     const Mis neff_j = Mis(float(double(neff) * (1.0 + p.ratio * double(float(p.importance[j])))));
     // The splat technique's eta at x_1, as MergingPath and photon_splats.cpp compute it.
     const Mis eta_splat = j == 1 && lookup ? Mis(p.splat) : 0.0;
+    if (j == 1 && lookup && p.lt > 0) cm.lt_first = mis(Mis(p.lt));
+    const Mis rho = p.lp > 0 ? mis(Mis(float(p.lp_lt)) / Mis(float(p.lp))) : 0.0;  // a photon's, vs lp_lt
     if (lookup && at[j].stored && p.lp > 0) {
       const PhotonAt &ph = at[j];
+      Mis lt = 0;
+      if (rho > 0 && (j == 1 ? cm.lt_first > 0 : cm.lt > 0))
+        lt = cm.lt_times(j == 1 ? rho : mis(Mis(float(p.w_light[j]))) * rho, j == 1);
       w.wm[j] = merge_weight(ph.A, ph.B, ph.b_valid, ph.prev_rough, float(p.w_cam[j]), float(p.w_light[j]),
                              mis(area * neff_j * q), mis(neff_j * q), mis(neff * q_b), cm.gamma_sum(k),
-                             cm.clamped, mis(eta_splat));
+                             cm.clamped, mis(eta_splat), lt);
       w.merged[j] = true;
       if (eta_splat > 0) {
         w.wt = splat_weight(ph.A, ph.B, ph.b_valid, float(p.w_cam[j]), mis(area * neff_j * q),
-                            mis(neff_j * q), mis(neff * q_b), mis(eta_splat), cm.clamped);
+                            mis(neff_j * q), mis(neff * q_b), mis(eta_splat), cm.clamped, cm.lt_first * rho);
         w.splatted = true;
       }
     }
     if (j == k - 1 && !p.delta(j)) {
       const float hit_ratio = p.hittable() ? mis(float(p.w_cam[j] / p.n_omega)) : 0.0f;
+      const bool first = j == 1;
+      Mis lt = 0;
+      if (p.lp_lt > 0 && (first ? cm.lt_first > 0 : cm.lt > 0)) {
+        const Mis ratio = mis(Mis(float(p.lp_lt)) * float(p.g_last()) / float(p.nk()));
+        lt = cm.lt_times(first ? ratio : mis(Mis(float(p.w_light[j]))) * ratio, first);
+      }
       w.wn = nee_weight(hit_ratio, float(p.w_light[j]), cm.s_cam(k), lp, float(p.g_last()), float(p.nk()),
-                        cm.clamped);
+                        cm.clamped, lt);
       w.nee = true;
     }
     cm.scatter(float(p.cos_next[j]), float(p.w_cam[j]), float(p.w_light[j]), lookup, j, area * neff_j * q,
-               eta_splat);
+               eta_splat, j == 1 ? cm.lt_first : 0.0);
   }
   w.clamped = cm.clamped;
   w.rescaled = w.rescaled || cm.exp2 != 0;
@@ -122,7 +173,7 @@ void expect_weight(double got, double want, const char *what, int path) {
 
 TEST(CausticsMis, WeightsMatchClosedFormAndSumToOne) {
   std::mt19937_64 g(20190704);
-  int paths_with_merges = 0, long_chains = 0, splatted = 0;
+  int paths_with_merges = 0, long_chains = 0, splatted = 0, light_traced = 0;
   for (int n = 0; n < 200000; ++n) {
     const SyntheticPath p = random_path(g);
     const ClosedForm f = closed_form(p);
@@ -157,13 +208,20 @@ TEST(CausticsMis, WeightsMatchClosedFormAndSumToOne) {
       sum += w.wt;
       splatted += 1;
     }
+    EXPECT_EQ(w.light_traced, f.ql > 0) << "light-tracing technique on path " << n;
+    if (w.light_traced) {
+      expect_weight(w.wl, f.ql * f.ql / total, "light path", n);
+      sum += w.wl;
+      light_traced += 1;
+    }
     paths_with_merges += any_merge;
     long_chains += any_merge && p.k >= 8;
     EXPECT_NEAR(sum, 1.0, 1e-3) << "path " << n;
     if (HasFailure()) return;
   }
-  std::printf("paths with merge techniques: %d (k >= 8: %d), with a splat technique: %d\n", paths_with_merges,
-              long_chains, splatted);
+  std::printf("paths with merge techniques: %d (k >= 8: %d), with a splat technique: %d, light-traced: %d\n",
+              paths_with_merges, long_chains, splatted, light_traced);
+  EXPECT_GT(light_traced, 5000);
   EXPECT_GT(paths_with_merges, 10000);
   EXPECT_GT(splatted, 2000);
   EXPECT_GT(long_chains, 500);
@@ -178,7 +236,10 @@ TEST(CausticsMis, ExtremePathsKeepWeightsInRange) {
   for (int n = 0; n < 50000; ++n) {
     const SyntheticPath p = random_path(g, 1e12, 40);
     const Weights w = production(p);
-    double sum = (w.hit ? w.wh : 0.0) + (w.nee ? w.wn : 0.0) + (w.splatted ? w.wt : 0.0);
+    double sum = (w.hit ? w.wh : 0.0) + (w.nee ? w.wn : 0.0) + (w.splatted ? w.wt : 0.0) +
+                 (w.light_traced ? w.wl : 0.0);
+    ASSERT_TRUE(!w.light_traced || (w.wl >= 0 && w.wl <= 1))
+        << "light path weight " << w.wl << " on path " << n;
     ASSERT_TRUE(!w.splatted || (w.wt >= 0 && w.wt <= 1)) << "splat weight " << w.wt << " on path " << n;
     for (uint32_t s = 1; s < p.k; ++s) {
       if (!w.merged[s]) continue;

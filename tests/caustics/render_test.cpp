@@ -71,8 +71,8 @@ TEST(CausticsRender, CausticFreeSceneIsThePathTracer) {
 }
 
 // Photon passes (per-path random numbers, per-task buffers in task order, kd-tree built on disjoint
-// subtrees), the schedule and the photons splatted to the lens (summed per pixel in a fixed order) do not
-// depend on threads: the same image with 1 and 3 threads.
+// subtrees), the schedule, the photons splatted to the lens and the light paths' connections to it
+// (summed per pixel in a fixed order) do not depend on threads: the same image with 1 and 3 threads.
 TEST(CausticsRender, SameImageAtAnyThreadCount) {
   SceneRenderer r;
   const std::string scene = sphere_scene(kAreaLight);
@@ -82,6 +82,7 @@ TEST(CausticsRender, SameImageAtAnyThreadCount) {
   const auto a = r.render(scene, one), b = r.render(scene, three);
   EXPECT_GT(stat(a, "caustics_photons"), 0.0);
   EXPECT_GT(stat(a, "caustics_splats"), 0.0);
+  EXPECT_GT(stat(a, "caustics_light_splats"), 0.0);
   EXPECT_EQ(stat(a, "caustics_photon_paths"), stat(b, "caustics_photon_paths"));
   ASSERT_EQ(a.layers.at("beauty").data, b.layers.at("beauty").data);
 }

@@ -3,7 +3,21 @@
 
 #include <nimbus/nimbus.hpp>
 
+#include <nimbus/cpp/math.hpp>
+
 namespace nimbus::sdk {
+
+// The ray a light path leaves its emitter by (`flags`: the emission sample's): off an area light's surface
+// by relative_offset, since emission points carry no error bound; from a point or a disk as it is.
+inline nimbus_ray_t emission_ray(const Vec3f &org, const Vec3f &dir, uint32_t flags) {
+  nimbus_ray_t ray;
+  org.store(ray.org);
+  dir.store(ray.dir);
+  ray.tnear = (flags & NIMBUS_LIGHT_AREA) ? relative_offset(org) : 0;
+  ray.tfar = kInfinity;
+  ray.mask = ~0u, ray.flags = 0;
+  return ray;
+}
 
 struct PathServices {
   const nimbus_host_scene_query_v1_t *scene = nullptr;

@@ -1,0 +1,155 @@
+// The light-tracing technique's paths; see light_paths.hpp.
+#include "light_paths.hpp"
+
+#include <cmath>
+
+#include <nimbus/cpp/rng.hpp>
+
+#include "merging.hpp"
+#include "photon_tracer.hpp"
+#include "sharpness.hpp"
+
+namespace nimbus::caustics {
+namespace {
+
+// Light paths per task.
+constexpr uint64_t kLightPathsPerTask = 1024;
+
+}  // namespace
+
+nimbus_status_t trace_light_paths(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks,
+                                  const nimbus_host_t *h, const LightTracing &in, LightTally &tally) {
+  struct Job {
+    const PhotonTracer *tracer;
+    const LightTracing *in;
+    std::atomic<uint64_t> work{0}, splats{0}, clamped{0};
+  } job{&tracer, &in};
+  const auto fn = [](const nimbus_thread_ctx_t *ctx, uint64_t b, uint64_t e, void *user) {
+    Job &j = *static_cast<Job *>(user);
+    LightTally t;
+    for (uint64_t p = b; p < e; ++p) j.tracer->trace_light(*ctx, p, *j.in, t);
+    j.work += t.work, j.splats += t.splats, j.clamped += t.clamped;
+  };
+  const uint64_t paths = uint64_t(in.merge->lt_paths);
+  const nimbus_status_t s = tasks->parallel_for(h, paths, kLightPathsPerTask, fn, &job);
+  tally.work += job.work.load(), tally.splats += job.splats.load(), tally.clamped += job.clamped.load();
+  return s;
+}
+
+// One light path: the light by power, the host's emission, the photon tracer's bounces and Russian
+// roulette, and at every rough vertex that can complete a path of at most max_depth segments, one
+// connection to the lens. PhotonMis follows the path with lp_lt; `stored` and `alive` replay the photon
+// tracer's rules (photon_tracer.cpp) so that the weights count the merges and splats the path has.
+void PhotonTracer::trace_light(const nimbus_thread_ctx_t &ctx, uint64_t path, const LightTracing &in,
+                               LightTally &out) const {
+  const nimbus_host_t *h = h_;
+  const MergeContext &mc = *in.merge;
+  nimbus_rng_t rng;
+  svc_.rng->derive(h, path, in.iteration, kStreamLightPath, &rng);
+  float sel = 0;
+  const int64_t li = mc.lt_emission->pick(next_uniform(rng), &sel);
+  if (li < 0 || !(sel > 0)) return;
+  const uint32_t light = uint32_t(li);
+  const Emitter &em = emitters_[light];
+  const float ue[4] = {next_uniform(rng), next_uniform(rng), next_uniform(rng), next_uniform(rng)};
+  nimbus_light_emission_t es;
+  scene_.sample_emission(h, light, ue, 0.0f, es);
+  if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0) || (es.flags & NIMBUS_LIGHT_INFINITE)) return;
+  const bool delta_pos = es.flags & NIMBUS_LIGHT_DELTA_POSITION;
+  const Vec3f org = Vec3f::load(es.org), n_e = Vec3f::load(es.n), dir0 = Vec3f::load(es.dir);
+  const float cos_e = delta_pos ? 1.0f : std::abs(dot(n_e, dir0));
+  const float lp = mc.lt_emission->lp(emitters_, light, org, n_e, dir0);
+  Rgb beta = Rgb::load(es.Le) * (cos_e / (sel * (delta_pos ? 1.0f : es.pdf_pos) * es.pdf_dir));
+  if (!(lp > 0) || is_black(beta) || !is_finite(beta)) return;
+  PhotonMis state;
+  state.emit(em.hittable(), cos_e, lp);
+  LightVertexClass c;
+  c.light = light;
+  c.rho = std::exp2(Mis(density_ratio_log2(emitters_.lp(light, org, n_e, dir0, org), lp)));
+
+  nimbus_ray_t ray = sdk::emission_ray(org, dir0, es.flags);
+  bool had_sharp = false, prev_rough = false, alive = true;  // alive: a photon path would go on
+  for (uint32_t depth = 1; depth < max_depth_; ++depth) {
+    nimbus_hit_t hit;
+    scene_.intersect(h, ctx, ray, 0.0f, hit);
+    out.work += kRayWork;
+    if (hit.geom_id == NIMBUS_NONE) return;
+    nimbus_interaction_t ix;
+    scene_.interaction(h, ray, hit, 0.0f, ix);
+    const Vec3f wo = -Vec3f::load(ray.dir), ng = Vec3f::load(ix.ng);
+    const float c_in = std::abs(dot(ng, wo));
+    if (!(c_in > 0)) return;
+    state.arrive(c_in);
+    const nimbus_lobe_t lobes = svc_.bsdf->lobes(h, &ix);
+    const bool rough = !is_sharp(svc_.bsdf, h_, ix, lobes);
+    const bool smooth_only = !has(lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
+    const Mis nee_term = depth == 1 && !smooth_only ? first_vertex_nee(ix, light, em, es, wo, lp, c_in) : 0.0;
+    c.depth = depth;
+    c.stored = alive && rough && had_sharp && depth <= kPhotonMaxVertices;
+    c.nee_first = nee_term;
+    if (rough && !smooth_only) {
+      const float lens_u[2] = {next_uniform(rng), next_uniform(rng)};
+      connect_light_vertex(ctx, ix, wo, beta, state, c, lens_u, in, out);
+    }
+    if (rough && (depth == 1 || prev_rough)) alive = false;
+    if (depth + 1 >= max_depth_) return;  // the next vertex would complete more than max_depth segments
+
+    float wo_arr[3];
+    const float u[3] = {next_uniform(rng), next_uniform(rng), next_uniform(rng)};
+    wo.store(wo_arr);
+    nimbus_bsdf_sample_t bs;
+    svc_.bsdf->sample(h, &ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
+    if (!(bs.pdf > 0)) return;
+    const Vec3f wi = Vec3f::load(bs.wi);
+    const bool delta = has(bs.lobe, NIMBUS_LOBE_SPECULAR);
+    state.scatter(std::abs(dot(ng, wi)), bs.pdf, bs.pdf_rev, rough, c.stored, delta ? 0.0 : nee_term);
+    const Rgb t = Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(ix.ns))) / bs.pdf);
+    const float q = std::min(1.0f, max_component(t));
+    if (!(q > 0) || next_uniform(rng) >= q) return;
+    beta *= t / q;
+    if (is_black(beta) || !is_finite(beta)) return;
+    prev_rough = rough;
+    had_sharp = had_sharp || !rough;
+    svc_.scene->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
+  }
+}
+
+// The connection of rough vertex ix to the lens: its light towards the lens times its weight, into
+// beauty and the path's lighting element and LightMix group.
+void PhotonTracer::connect_light_vertex(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix,
+                                        const Vec3f &wo, const Rgb &beta, const PhotonMis &state,
+                                        const LightVertexClass &c, const float lens_u[2],
+                                        const LightTracing &in, LightTally &out) const {
+  const MergeContext &mc = *in.merge;
+  LensLink link;
+  if (!link_to_lens(ctx, ix, wo, beta, lens_u, 0.0f, false, mc.view_axis, mc.theta_pix, link, out.work))
+    return;
+  const float *raster = link.raster;
+  if (!(raster[0] >= 0 && raster[1] >= 0)) return;
+  const uint32_t x = uint32_t(raster[0]), y = uint32_t(raster[1]);
+  if (x >= in.width || y >= in.height) return;
+  // A merge at x_1 needs the photon on the camera's side of the surface (merging.cpp's side test).
+  const bool v1 = c.stored && link.same_side;
+  const MergeDensities md =
+      first_merge_densities(mc, *in.pixel_radius, size_t(y) * in.width + x, link.length, 0.0f);
+  const double density = link.density;
+  const Mis eta_splat = v1 && mc.splat_paths > 0 ? mis(splat_eta(mc.splat_paths, density)) : 0.0;
+  bool clamped = false;
+  const float w =
+      lt_weight(state.log2_A(), state.log2_B(), state.b_valid, v1, link.w_cam, md.eta, md.neff, md.neff_b,
+                eta_splat, c.nee_first, c.rho, mis(splat_eta(mc.lt_paths, density)), clamped);
+  out.clamped += clamped ? 1 : 0;
+  if (!(w > 0)) return;
+  float v[3];
+  (link.value * float(w / mc.lt_paths)).store(v);
+  in.film->splat(h_, &ctx, NIMBUS_ELEMENT_BEAUTY, raster[0], raster[1], v);
+  ++out.splats;
+  // The path's lighting element, as the camera side sorts the same path (spec 8).
+  const bool caustic = c.rho > 0 && (v1 || state.b_valid);
+  const nimbus_element_t el = caustic ? mc.ids.diverted : c.depth == 1 ? mc.ids.direct : mc.ids.indirect;
+  if (mc.ids.split_light && el >= 0) in.film->splat(h_, &ctx, el, raster[0], raster[1], v);
+  if (in.lightmix && mc.light_group && c.light < mc.light_group->size())
+    in.lightmix->splat(h_, &ctx, (*mc.light_group)[c.light], raster[0], raster[1], v);
+}
+
+}  // namespace nimbus::caustics
