@@ -113,6 +113,8 @@ def main():
     ap.add_argument("--reference-time", type=float, default=1200)
     ap.add_argument("--covered-only", action="store_true", help="only the pixels the reference covers")
     ap.add_argument("--crop", help="X0,Y0,X1,Y1: only this pixel rectangle")
+    ap.add_argument("--also-crop", action="append", default=[], metavar="NAME:X0,Y0,X1,Y1",
+                    help="also report this rectangle, from the same renders (repeatable)")
     ap.add_argument("--brighter-than", type=float,
                     help="F: only the pixels whose reference luminance exceeds F x the region's median")
     ap.add_argument("--exclude-render", metavar="MASK.yaml",
@@ -156,28 +158,37 @@ def main():
             run([args.nimbus, "render", args.exclude_render, "-o", mask_exr, "--integrator", "pt",
                  "--iterations", "64", "--seed", "1", "-q"])
             excluded = excluded_pixels(mask_exr, ref_image.shape[:2], scene)
-        mask = region_mask(ref_image, args.covered_only, crop, args.brighter_than, excluded)
-        ref_var = 0.0
-        if len(halves) == 2:
-            ref_var = relmse(halves[0], halves[1], mask, scale=ref_image) / 4
-        errs = {(integ, t): [] for integ in integrators for t in times}
+        regions = {"image": crop}
+        for entry in args.also_crop:
+            label, _, rect = entry.partition(":")
+            regions[label] = [int(v) for v in rect.split(",")]
+        masks, ref_vars = {}, {}
+        for region, rect in regions.items():
+            masks[region] = region_mask(ref_image, args.covered_only, rect, args.brighter_than, excluded)
+            ref_vars[region] = 0.0
+            if len(halves) == 2:
+                ref_vars[region] = relmse(halves[0], halves[1], masks[region], scale=ref_image) / 4
+        errs = {(region, integ, t): [] for region in regions for integ in integrators for t in times}
         for t in times:
             for s in range(args.seeds):
                 for integ in integrators:
                     out = os.path.join(args.out, f"{name}-{integ}-{t:g}s-seed{s + 1}.exr")
                     render(how[integ][1], scene, how[integ][0], t, s + 1, out)
-                    errs[(integ, t)].append(relmse(read_rgb(out), ref_image, mask))
+                    image = read_rgb(out)
+                    for region in regions:
+                        errs[(region, integ, t)].append(relmse(image, ref_image, masks[region]))
                     remove_render_outputs(out)
-        for integ in integrators:
-            for t in times:
-                e = errs[(integ, t)]
-                med = statistics.median(e)
-                corrected = statistics.median([x - ref_var for x in e])
-                rows.append({"scene": name, "integrator": integ, "seconds": t, "relmse_median": med,
-                             "relmse_runs": " ".join(f"{x:.6g}" for x in e), "reference_variance": ref_var,
-                             "relmse_corrected": corrected,
-                             "efficiency": 1.0 / (corrected * t) if corrected > 0 else float("inf"),
-                             "pixels_compared": float(mask.mean())})
+        for region, integ, t in errs:
+            e = errs[(region, integ, t)]
+            ref_var = ref_vars[region]
+            med = statistics.median(e)
+            corrected = statistics.median([x - ref_var for x in e])
+            rows.append({"scene": name if region == "image" else f"{name}/{region}", "integrator": integ,
+                         "seconds": t, "relmse_median": med,
+                         "relmse_runs": " ".join(f"{x:.6g}" for x in e), "reference_variance": ref_var,
+                         "relmse_corrected": corrected,
+                         "efficiency": 1.0 / (corrected * t) if corrected > 0 else float("inf"),
+                         "pixels_compared": float(masks[region].mean())})
 
     csv_path = os.path.join(args.out, "error-vs-time.csv")
     with open(csv_path, "w", newline="") as f:
@@ -210,7 +221,7 @@ def main():
         ax.set_title(scene)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend()
-        png = os.path.join(args.out, f"{scene}-error-vs-time.png")
+        png = os.path.join(args.out, f"{scene.replace('/', '-')}-error-vs-time.png")
         fig.savefig(png, dpi=110, bbox_inches="tight")
         print(f"wrote {png}")
 

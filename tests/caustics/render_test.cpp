@@ -113,6 +113,7 @@ TEST(CausticsRender, ElementsAndLightMixSumToBeauty) {
   const Rgb c = mean_rgb(L.at("caustics").data);
   EXPECT_GT(luminance(c), 1e-3 * luminance(mean_rgb(beauty)));
   EXPECT_GT(stat(img, "caustics_photons"), 0.0);
+  EXPECT_GT(stat(img, "caustics_light_splats"), 0.0);  // light paths' light is sorted alike
   EXPECT_GT(stat(img, "caustics_bytes_per_photon"), 40.0);
   EXPECT_LT(stat(img, "caustics_bytes_per_photon"), 64.0);
 }
