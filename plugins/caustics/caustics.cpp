@@ -9,7 +9,6 @@
 #include <nimbus/nimbus.hpp>
 
 #include <chrono>
-#include <cstring>
 #include <utility>
 
 #include <nimbus/cpp/camera_path.hpp>
@@ -76,10 +75,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
                     query_sharp_targets(host().get(), services().scene, kSharpAlpha));
     merge_element_ =
         services().film->register_element(host().get(), "caustics_merge", 3, NIMBUS_ELEMENT_AVERAGE);
-    // Splatted photons (photon_splats.hpp) are light of the `caustics` element too, and light paths
-    // (light_paths.hpp) of the lighting elements.
-    for (const char *el : {diverted_element(), "direct", "indirect"})
-      services().film->register_element(host().get(), el, 3, NIMBUS_ELEMENT_SPLAT);
+    LensConnections::register_elements(services().film, host().get(), diverted_element());
     return NIMBUS_OK;
   }
 
@@ -210,7 +206,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       rec.merge.store(a);
       services().film->accumulate(host().get(), &ctx, merge_id_, x, y, a);
     }
-    if (armed_) useful_.add(size_t(y) * width_ + x, rec);
+    const size_t i = size_t(y) * width_ + x;
+    if (armed_) useful_.add(i, rec), lens_.add_sample(i, luminance(rec.beauty));
   }
 
   nimbus_status_t end_iteration(uint64_t frame_iteration) override {
@@ -229,6 +226,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       const IterationInputs in =
           iteration_inputs(summary, sum, light_path_work, pixels, schedule_.map_photon_ratio(), photon_work_);
       roulette_.update(in.roulette);
+      lens_.pass_done(in.work());
       schedule_.iteration_done(iteration, summary.useful, in.efficiency);
       pixel_radius_.end_iteration();
       ++stats_.map_iterations;
@@ -241,7 +239,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       stats_.report(progress_, host().get(),
                     {schedule_.photon_ratio(), roulette_.probability(kFirstLookup),
                      roulette_.probability(kLaterLookup), double(importance_.cells()), double(sizeof(Photon)),
-                     double(emitters_.emission_map().slots_learnt())});
+                     double(emitters_.emission_map().slots_learnt())}),
+          lens_.report(progress_, host().get());
     pass_.release();
   }
 
@@ -259,7 +258,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     roulette_.save(w);
     importance_.save(w), pass_importance_.save(w);
     emission_selection_.save(w);
-    emitters_.emission_map().save(w);
+    emitters_.emission_map().save(w), lens_.trial().save(w);
     pass_.path_use().save_used(w);
     w.put(stats_);
     return NIMBUS_OK;
@@ -282,16 +281,17 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     ImportanceMap importance = importance_, pass_importance = pass_importance_;
     EmissionSelection selection = emission_selection_;
     EmissionMap emission_map = emitters_.emission_map();
+    LightPathTrial trial = lens_.trial();
     std::vector<uint64_t> used;
     SolverStats stats;
     if (!(schedule.restore(r) && r.get(work) && r.get(request) && r.get(reach) &&
           r.get_array(radii.counts()) && useful.restore(r) && pixel_radius.restore(r) &&
           roulette.restore(r) && importance.restore(r) && pass_importance.restore(r) &&
-          selection.restore(r) && emission_map.restore(r) && PathUse::read_used(r, used) && r.get(stats) &&
-          r.done()))
+          selection.restore(r) && emission_map.restore(r) && trial.restore(r) &&
+          PathUse::read_used(r, used) && r.get(stats) && r.done()))
       return NIMBUS_E_INVALID_ARG;
     emission_selection_ = std::move(selection), pending_used_ = std::move(used);
-    emitters_.emission_map() = std::move(emission_map);
+    emitters_.emission_map() = std::move(emission_map), lens_.trial() = std::move(trial);
     emitters_.emission_map().update();  // the densities the current map was traced with
     schedule_ = schedule, photon_work_ = work, map_request_ = request, map_reach_ = reach;
     roulette_ = roulette, importance_ = std::move(importance), pass_importance_ = std::move(pass_importance);
@@ -390,7 +390,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   UsefulPixels useful_;
   PixelRadius pixel_radius_;
   LookupRoulette roulette_;
-  static constexpr uint32_t kStateVersion = 10;  // the format of save_state's bytes
+  static constexpr uint32_t kStateVersion = 11;  // the format of save_state's bytes
   SolverStats stats_;
 };
 

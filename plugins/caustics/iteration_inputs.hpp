@@ -15,6 +15,12 @@ namespace nimbus::caustics {
 struct IterationInputs {
   RouletteSample roulette;
   EfficiencySample efficiency;
+  // Work per camera path of the whole iteration: paths, lookups, light paths, the map's photon paths.
+  double work() const {
+    double w = roulette.other_work;
+    for (double l : roulette.lookup_work) w += l;
+    return w;
+  }
 };
 
 // sum: the camera paths' tally; camera_extra: other camera-pass work (light paths); pixels: camera

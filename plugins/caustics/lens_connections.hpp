@@ -8,6 +8,7 @@
 
 #include <algorithm>
 
+#include "light_path_trial.hpp"
 #include "light_paths.hpp"
 #include "merging.hpp"
 #include "photon_splats.hpp"
@@ -18,6 +19,14 @@ namespace nimbus::caustics {
 
 class LensConnections {
  public:
+  // [main-thread, prepare] Splatted photons are light of the `caustics` element (diverted) too, and
+  // light paths of the lighting elements.
+  static void register_elements(const nimbus_host_film_v1_t *film, const nimbus_host_t *h,
+                                const char *diverted) {
+    for (const char *el : {diverted, "direct", "indirect"})
+      film->register_element(h, el, 3, NIMBUS_ELEMENT_SPLAT);
+  }
+
   // [main-thread] A new render. splats: photons can be splatted (splats_possible, lookups that match
   // photon times); timed: photons carry scene times (no light paths then: their weights would need the
   // merges' time windows). axis, theta_pix: the view axis and a pixel's angular width (camera_density).
@@ -28,6 +37,7 @@ class LensConnections {
     light_paths_ = splats && !timed && !emission_.empty();
     map_light_paths_ = false;
     paths_ = std::max<uint64_t>(1, pixels), work_ = 0;
+    trial_.reset(pixels, light_paths_), counted_ = false;
     merge.view_axis = axis, merge.theta_pix = theta_pix;
     merge.lt_emission = &emission_, merge.lt_paths = 0, merge.splat_paths = 0;
   }
@@ -45,20 +55,42 @@ class LensConnections {
   }
 
   // [main-thread] The camera pass of frame iteration `iteration`: with a map active, its photons'
-  // splats, then its light paths (about one per camera path of the last iteration).
-  nimbus_status_t camera_pass(bool map_active, const SplatInputs &splats, const PhotonTracer &tracer,
+  // splats, then its light paths (about one per camera path of the last iteration) when the trial
+  // (light_path_trial.hpp) has them in this pass.
+  nimbus_status_t camera_pass(bool map_active, SplatInputs splats, const PhotonTracer &tracer,
                               uint64_t iteration, MergeContext &merge, SolverStats &stats) {
-    merge.lt_paths = map_active && map_light_paths_ ? double(paths_) : 0.0;
+    counted_ = map_active && map_light_paths_;
+    merge.lt_paths = counted_ && trial_.next_pass() ? double(paths_) : 0.0;
+    splats.trial = counted_ && trial_.measuring() ? &trial_ : nullptr;
     if (map_active && merge.splat_paths > 0)
       if (nimbus_status_t s = splat_photons(splats, stats.mis_clamped); s != NIMBUS_OK) return s;
     if (!(merge.lt_paths > 0)) return NIMBUS_OK;
     LightTally t;
-    const LightTracing in{splats.film,  splats.lightmix, &merge,   splats.pixel_radius,
-                          splats.width, splats.height,   iteration};
+    const LightTracing in{splats.film,  splats.lightmix, &merge,    splats.pixel_radius,
+                          splats.width, splats.height,   iteration, trial_.measuring()};
     const nimbus_status_t s = trace_light_paths(tracer, splats.tasks, splats.host, in, t);
     stats.light_paths += paths_, stats.light_splats += t.splats, stats.mis_clamped += t.clamped;
+    for (const PixelLight &l : t.light) trial_.add_splat(l.pixel, l.light);
     work_ += t.work;
     return s;
+  }
+  // [render-thread] Pixel i's camera sample (luminance) in the current pass.
+  void add_sample(size_t i, float beauty) {
+    if (counted_) trial_.add_sample(i, beauty);
+  }
+  // [main-thread] The current pass ended with `work` work units per camera path, all included.
+  void pass_done(double work) {
+    if (counted_) trial_.pass_done(work);
+  }
+  LightPathTrial &trial() { return trial_; }
+  // [main-thread] The trial's outcome as render statistics.
+  void report(const nimbus_host_progress_v1_t *progress, const nimbus_host_t *h) const {
+    const LightPathTrial::Decision &d = trial_.decision();
+    progress->stat_add(h, "caustics_light_paths_kept", trial_.state() == LightPathTrial::State::On ? 1 : 0);
+    progress->stat_add(h, "caustics_light_path_trial_variance_without", d.v_off);
+    progress->stat_add(h, "caustics_light_path_trial_variance_with", d.v_on);
+    progress->stat_add(h, "caustics_light_path_trial_work_without", d.c_off);
+    progress->stat_add(h, "caustics_light_path_trial_work_with", d.c_on);
   }
 
   // [main-thread] An iteration ended with `pixels` camera paths: the light paths' work since the last
@@ -75,6 +107,8 @@ class LensConnections {
   bool map_light_paths_ = false;  // and the current map's camera passes do
   uint64_t paths_ = 0;            // light paths per camera pass
   uint64_t work_ = 0;             // their budget work units since the last iteration_done
+  LightPathTrial trial_;          // whether they pay
+  bool counted_ = false;          // the current pass is one of the trial's (a map that can use them)
 };
 
 }  // namespace nimbus::caustics

@@ -19,27 +19,30 @@ constexpr uint64_t kLightPathsPerTask = 1024;
 
 nimbus_status_t trace_light_paths(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks,
                                   const nimbus_host_t *h, const LightTracing &in, LightTally &tally) {
+  const uint64_t paths = uint64_t(in.merge->lt_paths);
   struct Job {
     const PhotonTracer *tracer;
     const LightTracing *in;
-    std::atomic<uint64_t> work{0}, splats{0}, clamped{0};
-  } job{&tracer, &in};
+    std::vector<LightTally> tallies;  // one per task: counts and light sum in task order
+  } job{&tracer, &in, std::vector<LightTally>((paths + kLightPathsPerTask - 1) / kLightPathsPerTask)};
   const auto fn = [](const nimbus_thread_ctx_t *ctx, uint64_t b, uint64_t e, void *user) {
     Job &j = *static_cast<Job *>(user);
-    LightTally t;
+    LightTally &t = j.tallies[b / kLightPathsPerTask];
     for (uint64_t p = b; p < e; ++p) j.tracer->trace_light(*ctx, p, *j.in, t);
-    j.work += t.work, j.splats += t.splats, j.clamped += t.clamped;
   };
-  const uint64_t paths = uint64_t(in.merge->lt_paths);
   const nimbus_status_t s = tasks->parallel_for(h, paths, kLightPathsPerTask, fn, &job);
-  tally.work += job.work.load(), tally.splats += job.splats.load(), tally.clamped += job.clamped.load();
+  for (const LightTally &t : job.tallies) {
+    tally.work += t.work, tally.splats += t.splats, tally.clamped += t.clamped;
+    tally.light.insert(tally.light.end(), t.light.begin(), t.light.end());
+  }
   return s;
 }
 
 // One light path: the light by power, the host's emission, the photon tracer's bounces and Russian
-// roulette, and at every rough vertex that can complete a path of at most max_depth segments, one
-// connection to the lens. PhotonMis follows the path with lp_lt; `stored` and `alive` replay the photon
-// tracer's rules (photon_tracer.cpp) so that the weights count the merges and splats the path has.
+// roulette, and at every rough vertex after the first bounce that can complete a path of at most
+// max_depth segments, one connection to the lens. PhotonMis follows the path with lp_lt; `stored` and `alive`
+// replay the photon tracer's rules (photon_tracer.cpp) so that the weights count the merges and splats the
+// path has.
 void PhotonTracer::trace_light(const nimbus_thread_ctx_t &ctx, uint64_t path, const LightTracing &in,
                                LightTally &out) const {
   const nimbus_host_t *h = h_;
@@ -72,7 +75,7 @@ void PhotonTracer::trace_light(const nimbus_thread_ctx_t &ctx, uint64_t path, co
   for (uint32_t depth = 1; depth < max_depth_; ++depth) {
     nimbus_hit_t hit;
     scene_.intersect(h, ctx, ray, 0.0f, hit);
-    out.work += kRayWork;
+    out.work += kLightPathRayWork;
     if (hit.geom_id == NIMBUS_NONE) return;
     nimbus_interaction_t ix;
     scene_.interaction(h, ray, hit, 0.0f, ix);
@@ -86,8 +89,7 @@ void PhotonTracer::trace_light(const nimbus_thread_ctx_t &ctx, uint64_t path, co
     const Mis nee_term = depth == 1 && !smooth_only ? first_vertex_nee(ix, light, em, es, wo, lp, c_in) : 0.0;
     c.depth = depth;
     c.stored = alive && rough && had_sharp && depth <= kPhotonMaxVertices;
-    c.nee_first = nee_term;
-    if (rough && !smooth_only) {
+    if (rough && !smooth_only && depth >= 2) {
       const float lens_u[2] = {next_uniform(rng), next_uniform(rng)};
       connect_light_vertex(ctx, ix, wo, beta, state, c, lens_u, in, out);
     }
@@ -122,7 +124,8 @@ void PhotonTracer::connect_light_vertex(const nimbus_thread_ctx_t &ctx, const ni
                                         const LightTracing &in, LightTally &out) const {
   const MergeContext &mc = *in.merge;
   LensLink link;
-  if (!link_to_lens(ctx, ix, wo, beta, lens_u, 0.0f, false, mc.view_axis, mc.theta_pix, link, out.work))
+  if (!link_to_lens(ctx, ix, wo, beta, lens_u, 0.0f, false, mc.view_axis, mc.theta_pix, link, out.work,
+                    kLightPathRayWork))
     return;
   const float *raster = link.raster;
   if (!(raster[0] >= 0 && raster[1] >= 0)) return;
@@ -135,18 +138,18 @@ void PhotonTracer::connect_light_vertex(const nimbus_thread_ctx_t &ctx, const ni
   const double density = link.density;
   const Mis eta_splat = v1 && mc.splat_paths > 0 ? mis(splat_eta(mc.splat_paths, density)) : 0.0;
   bool clamped = false;
-  const float w =
-      lt_weight(state.log2_A(), state.log2_B(), state.b_valid, v1, link.w_cam, md.eta, md.neff, md.neff_b,
-                eta_splat, c.nee_first, c.rho, mis(splat_eta(mc.lt_paths, density)), clamped);
+  const float w = lt_weight(state.log2_A(), state.log2_B(), state.b_valid, v1, link.w_cam, md.eta, md.neff,
+                            md.neff_b, eta_splat, c.rho, mis(splat_eta(mc.lt_paths, density)), clamped);
   out.clamped += clamped ? 1 : 0;
   if (!(w > 0)) return;
   float v[3];
   (link.value * float(w / mc.lt_paths)).store(v);
   in.film->splat(h_, &ctx, NIMBUS_ELEMENT_BEAUTY, raster[0], raster[1], v);
   ++out.splats;
+  if (in.record_light) out.light.push_back({y * in.width + x, luminance(Rgb::load(v))});
   // The path's lighting element, as the camera side sorts the same path (spec 8).
   const bool caustic = c.rho > 0 && (v1 || state.b_valid);
-  const nimbus_element_t el = caustic ? mc.ids.diverted : c.depth == 1 ? mc.ids.direct : mc.ids.indirect;
+  const nimbus_element_t el = caustic ? mc.ids.diverted : mc.ids.indirect;
   if (mc.ids.split_light && el >= 0) in.film->splat(h_, &ctx, el, raster[0], raster[1], v);
   if (in.lightmix && mc.light_group && c.light < mc.light_group->size())
     in.lightmix->splat(h_, &ctx, (*mc.light_group)[c.light], raster[0], raster[1], v);

@@ -1,9 +1,12 @@
 // The light-tracing technique (VCM's light-vertex connection to the camera): every camera pass that
 // uses a photon map also traces light paths of its own, about one per pixel, from the finite lights by
 // their power and the host's own emission (no projection map), through every vertex up to the maximum
-// path length, and connects each rough vertex to the lens. It samples the indirect light of closed
-// rooms under small lights (a floor lit by the walls) far better than path tracing does, and caustics
-// seen after another diffuse bounce, which path tracing cannot sample under a delta light at all.
+// path length, and connects each rough vertex after the first bounce to the lens. It samples the
+// indirect light of closed rooms under small lights (a floor lit by the walls) far better than path
+// tracing does, and caustics seen after another diffuse bounce, which path tracing cannot sample under
+// a delta light at all. Direct light (paths of two segments) stays path tracing's: NEE renders a small
+// light's direct light nearly without noise, and the power heuristic, which weighs densities and not
+// variances, would hand light tracing about half of it and add its Poisson noise.
 //
 // It joins the one power-heuristic combination of mis.hpp: the camera side carries its term R_lt from
 // x_1 on (CameraMis::lt), with eta_lt = N_lt / C_1 as the splat technique's (mis.hpp, splat_eta), and
@@ -30,6 +33,11 @@ namespace nimbus::caustics {
 struct MergeContext;
 class PixelRadius;
 class PhotonTracer;
+
+// Budget work units (schedule.hpp) per ray of a light path: a ray's, kRayWork, and half again for what
+// comes with it (a connection's BSDF evaluations and film writes, the camera side's extra MIS terms),
+// so that the light-path trial compares the two arms' costs as the clock does (docs/performance.md §5).
+inline constexpr uint64_t kLightPathRayWork = 3;
 
 // Random-number stream of light path p of frame iteration i: derive(p, i, kStreamLightPath).
 inline constexpr uint64_t kStreamLightPath = 0x6c7470617468;  // "ltpath"
@@ -75,14 +83,13 @@ inline float density_ratio_log2(float lp_to, float lp_from) {
 //   w_cam_fwd: omega^C_1 of the light path's incoming direction, given the camera's
 //   eta, neff, neff_b: the merge at x_1's densities (merge_densities), eta_splat: mis(splat_eta) while
 //              photons are splatted and v1 (else 0)
-//   nee_first: at the light path's first vertex, NEE's term E (photon_nee_term with lp_lt), else 0
 //   rho:       mis(lp_ph / lp_lt), the merges' and splats' density against this path's
 //   eta_lt:    mis(splat_eta(N_lt, C_1))
 inline float lt_weight(float log2_A, float log2_B, bool b_valid, bool v1, float w_cam_fwd, Mis eta, Mis neff,
-                       Mis neff_b, Mis eta_splat, Mis nee_first, Mis rho, Mis eta_lt, bool &clamped) {
+                       Mis neff_b, Mis eta_splat, Mis rho, Mis eta_lt, bool &clamped) {
   if (!(eta_lt > 0)) return 0.0f;
   const Mis w2 = mis(Mis(w_cam_fwd));
-  Mis others = w2 * std::exp2(Mis(log2_A)) + nee_first;
+  Mis others = w2 * std::exp2(Mis(log2_A));
   if (rho > 0) {
     Mis merges = v1 ? eta + eta_splat : 0.0;
     if (b_valid && neff > 0) merges += w2 * std::exp2(Mis(log2_B)) * neff_b * eta / neff;
@@ -97,8 +104,13 @@ inline float lt_weight(float log2_A, float log2_B, bool b_valid, bool v1, float 
 struct LightVertexClass {
   uint32_t light = 0, depth = 0;  // its light; segments from the light (it completes depth + 1)
   bool stored = false;            // the photon tracer would have stored a photon here
-  Mis nee_first = 0;              // at the first vertex, NEE's term E (with lp_lt); else 0
   Mis rho = 0;                    // mis(lp_ph / lp_lt) of the path's emission
+};
+
+// Light (luminance) a connection added to pixel `pixel` (light_path_trial.hpp).
+struct PixelLight {
+  uint32_t pixel;
+  float light;
 };
 
 // What one camera pass's light paths read (fixed during the pass).
@@ -108,18 +120,21 @@ struct LightTracing {
   const MergeContext *merge = nullptr;                 // its lt_paths is N_lt
   const PixelRadius *pixel_radius = nullptr;
   uint32_t width = 0, height = 0;
-  uint64_t iteration = 0;  // the frame iteration: keys the paths' random numbers
+  uint64_t iteration = 0;     // the frame iteration: keys the paths' random numbers
+  bool record_light = false;  // record each connection's light per pixel (LightTally::light)
 };
 
 // What one worker's light paths counted.
 struct LightTally {
-  uint64_t work = 0;     // budget work units (schedule.hpp)
-  uint64_t splats = 0;   // connections that reached the film
-  uint64_t clamped = 0;  // weights whose competitors overflowed
+  uint64_t work = 0;              // budget work units (schedule.hpp)
+  uint64_t splats = 0;            // connections that reached the film
+  uint64_t clamped = 0;           // weights whose competitors overflowed
+  std::vector<PixelLight> light;  // with LightTracing::record_light: each connection's, in path order
 };
 
 // [main-thread] Traces the camera pass's in.merge->lt_paths light paths with `tracer` (in parallel) and
-// adds their counts to `tally`. Deterministic: the film sums splats per pixel in a fixed order.
+// adds their counts (and recorded light, in path order) to `tally`. Deterministic: the film sums splats
+// per pixel in a fixed order.
 nimbus_status_t trace_light_paths(const PhotonTracer &tracer, const nimbus_host_tasks_v1_t *tasks,
                                   const nimbus_host_t *h, const LightTracing &in, LightTally &tally);
 

@@ -210,7 +210,7 @@ class MergingPath {
     const float nee_ratio = h.specular ? 0.0f : mis(h.light_pdf / h.bsdf_pdf);
     const float lp = hit_lp(*mc_.emitters, h);
     Mis lt = 0;
-    if (mis_.lt > 0) {
+    if (h.segments >= 3 && mis_.lt > 0) {  // light paths leave direct light to path tracing
       const float lp_lt = mc_.lt_emission->lp(*mc_.emitters, h.light, h.p, h.n, h.wo);
       if (lp_lt > 0) lt = mis_.lt_times(mis(Mis(lp_lt)), false);
     }
@@ -271,12 +271,11 @@ class MergingPath {
     float nk = s.pmf;  // delta lights
     if (!s.delta) nk = infinite ? s.light_pdf : s.light_pdf * std::abs(dot(Vec3f::load(ls.n), s.wi)) / d2;
     Mis lt = 0;
-    const bool first = s.segments == 2;  // NEE from x_1: the light path's x_1 is the connected vertex
-    if (first ? mis_.lt_first > 0 : mis_.lt > 0) {
+    if (s.segments >= 3 && mis_.lt > 0) {  // light paths leave direct light to path tracing
       const float lp_lt =
           mc_.lt_emission->lp(*mc_.emitters, s.light, Vec3f::load(ls.p), Vec3f::load(ls.n), -s.wi, s.time);
-      const Mis ratio = mis(Mis(lp_lt) * (cos_j / d2) / nk);
-      if (lp_lt > 0) lt = mis_.lt_times(first ? ratio : mis(Mis(s.bsdf_pdf_rev)) * ratio, first);
+      if (lp_lt > 0)
+        lt = mis_.lt_times(mis(Mis(s.bsdf_pdf_rev)) * mis(Mis(lp_lt) * (cos_j / d2) / nk), false);
     }
     const float w =
         nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk, mis_.clamped, lt);

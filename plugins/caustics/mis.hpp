@@ -184,9 +184,9 @@ struct CameraMis {
   uint32_t rough_count = 0;                // rough vertices among x_1 .. x_j (after append)
   uint32_t d_photon = kPhotonMaxVertices;  // the photon tracer's D_photon (tests vary it)
   int exp2 = 0;                            // every R is terms[i].R * 2^exp2
-  // The light-tracing technique (light_paths.hpp), always eligible once x_1 scattered non-deltaly: its
-  // R (times 2^exp2), and before that x_1's mis(eta_lt) (unscaled), which NEE from x_1 and merges at x_1
-  // read. Its emission density lp_lt is its own, so it is summed apart from the merge terms.
+  // The light-tracing technique (light_paths.hpp), eligible for paths of three or more segments once
+  // x_1 scattered non-deltaly: its R (times 2^exp2), and before that x_1's mis(eta_lt) (unscaled), which
+  // merges at x_1 read. Its emission density lp_lt is its own, so it is summed apart from the merge terms.
   Mis lt = 0, lt_first = 0;
   mutable bool clamped = false;  // a weight's competitors overflowed (see the top)
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "light_path_trial.hpp"
 #include "merging.hpp"
 #include "useful_pixels.hpp"
 
@@ -72,11 +73,13 @@ nimbus_status_t splat_photons(const SplatInputs &in, uint64_t &clamped) {
       in.tasks->parallel_for(in.host, in.splats.size(), kSplatsPerTask, splat_range, &job);
   clamped += overflows.load();
   // In splat order, on this thread: the sums stay the same at any thread count.
-  for (size_t i = 0; in.useful && i < light.size(); ++i) {
+  for (size_t i = 0; i < light.size(); ++i) {
     if (!(light[i] > 0)) continue;
     const PhotonSplat &sp = in.splats[i];
     const float split = in.photons[sp.photon].path & 1u ? -light[i] : light[i];  // as merging.cpp's halves
-    in.useful->add_splat(size_t(sp.raster[1]) * in.width + size_t(sp.raster[0]), light[i], split);
+    const size_t pixel = size_t(sp.raster[1]) * in.width + size_t(sp.raster[0]);
+    if (in.useful) in.useful->add_splat(pixel, light[i], split);
+    if (in.trial) in.trial->add_splat(pixel, light[i]);
   }
   return s;
 }

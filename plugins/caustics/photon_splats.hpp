@@ -22,6 +22,7 @@ namespace nimbus::caustics {
 struct MergeContext;
 class PixelRadius;
 class UsefulPixels;
+class LightPathTrial;
 
 // A stored photon's connection to the lens, made in its photon pass.
 struct PhotonSplat {
@@ -52,6 +53,7 @@ struct SplatInputs {
   uint32_t width = 0, height = 0;
   std::span<const PhotonSplat> splats;
   std::span<const Photon> photons;
+  LightPathTrial *trial = nullptr;  // takes it too while light paths are on trial (light_path_trial.hpp)
 };
 
 // [main-thread] Whether photons can be splatted: the camera connects points to the lens (SDK 1.1), the

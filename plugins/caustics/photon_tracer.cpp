@@ -190,7 +190,8 @@ void PhotonTracer::connect_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_
   const uint64_t u = hash_keys({key, 0x6c656e73});
   const float lens_u[2] = {float(u >> 40) * 0x1p-24f, float((u >> 16) & 0xffffffu) * 0x1p-24f};
   LensLink link;
-  if (!link_to_lens(ctx, ix, wo, beta, lens_u, time, true, splat_.axis, splat_.theta_pix, link, out.work))
+  if (!link_to_lens(ctx, ix, wo, beta, lens_u, time, true, splat_.axis, splat_.theta_pix, link, out.work,
+                    kRayWork))
     return;
   PhotonSplat s;
   s.raster[0] = link.raster[0], s.raster[1] = link.raster[1];
@@ -205,11 +206,11 @@ void PhotonTracer::connect_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_
 // The light tracer's connection of vertex ix to the lens point lens_u picks: its value (importance
 // transport), the camera path's pdf of the vertex's incoming direction (as a merge evaluates it), and
 // the camera paths' density of first vertices there. False when the lens does not see it, or (with
-// reflection_only) sees its other side.
+// reflection_only) sees its other side. Its visibility ray adds ray_work to work.
 bool PhotonTracer::link_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix,
                                 const Vec3f &wo, const Rgb &beta, const float lens_u[2], float time,
                                 bool reflection_only, const Vec3f &axis, float theta_pix, LensLink &link,
-                                uint64_t &work) const {
+                                uint64_t &work, uint64_t ray_work) const {
   float lens[3];
   const float we = scene_.connect(h_, ix.p, time, lens_u, link.raster, lens);
   if (!(we > 0)) return false;
@@ -230,7 +231,7 @@ bool PhotonTracer::link_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_int
   if (!(link.density > 0) || !std::isfinite(link.density)) return false;
   nimbus_ray_t ray;
   svc_.scene->spawn_ray_to(h_, &ix, lens, &ray);
-  work += kRayWork;
+  work += ray_work;
   return !scene_.occluded(h_, ctx, ray, time);
 }
 

@@ -145,7 +145,8 @@ class PhotonTracer {
                        const Rgb &beta, float time, uint64_t key, PhotonChunk &out) const;
   bool link_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix, const Vec3f &wo,
                     const Rgb &beta, const float lens_u[2], float time, bool reflection_only,
-                    const Vec3f &axis, float theta_pix, LensLink &link, uint64_t &work) const;
+                    const Vec3f &axis, float theta_pix, LensLink &link, uint64_t &work,
+                    uint64_t ray_work) const;
   void connect_light_vertex(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix, const Vec3f &wo,
                             const Rgb &beta, const PhotonMis &state, const LightVertexClass &c,
                             const float lens_u[2], const LightTracing &in, LightTally &out) const;

@@ -123,7 +123,7 @@ struct ClosedForm {
   double qh = 0, qn = 0;
   std::vector<double> qm;  // by s (0 where no technique)
   double qt = 0;           // the splat at x_1: a technique wherever the merge at x_1 is
-  double ql = 0;           // the light-tracing technique: wherever x_1 is rough and lp_lt > 0
+  double ql = 0;           // the light-tracing technique: k >= 3, x_1 rough and lp_lt > 0
   double sum() const {
     double s = qh * qh + qn * qn + qt * qt + ql * ql;
     for (double q : qm) s += q * q;
@@ -180,7 +180,7 @@ inline ClosedForm closed_form(const SyntheticPath &p) {
     f.qm[s] = q * light_pair;
   }
   if (f.qm[1] > 0) f.qt = f.qm[1] * p.splat / (area_at(p, 1) * neff_at(p, 1) * lookup_probability_at(p, 1));
-  if (p.lt > 0 && p.lp_lt > 0 && p.rough(1)) {
+  if (p.lt > 0 && p.lp_lt > 0 && p.rough(1) && k >= 3) {
     f.ql = p.lt * p.lp_lt * p.g_last();
     for (uint32_t j = 1; j + 2 <= k; ++j) f.ql *= L[j];
   }

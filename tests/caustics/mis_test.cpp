@@ -38,7 +38,7 @@ struct Weights {
 // along the whole path, the photon tracer's rules for where photons would be stored, the weight at x_1.
 void light_side(const SyntheticPath &p, Weights &w) {
   const uint32_t k = p.k;
-  if (!(p.lt > 0) || !(p.lp_lt > 0) || !p.rough(1)) return;
+  if (!(p.lt > 0) || !(p.lp_lt > 0) || !p.rough(1) || k < 3) return;  // direct light is path tracing's
   const float lp_lt = float(p.lp_lt);
   PhotonMis lm;
   lm.emit(p.hittable(), p.light == LightKind::Area ? float(p.cos_prev[k]) : 1.0f, lp_lt);
@@ -57,7 +57,7 @@ void light_side(const SyntheticPath &p, Weights &w) {
       const Mis rho = p.lp > 0 ? mis(Mis(float(p.lp)) / Mis(lp_lt)) : 0.0;
       w.wl = lt_weight(lm.log2_A(), lm.log2_B(), lm.b_valid, v1, float(p.w_cam[1]), mis(area * neff * q),
                        mis(neff * q), mis(neff * Mis(float(p.q_later))),
-                       v1 && p.splat > 0 ? mis(Mis(p.splat)) : 0.0, k == 2 ? E : 0.0, rho, mis(Mis(p.lt)),
+                       v1 && p.splat > 0 ? mis(Mis(p.splat)) : 0.0, rho, mis(Mis(p.lt)),
                        w.clamped);
       w.light_traced = true;
       return;
@@ -114,7 +114,7 @@ Weights production(const SyntheticPath &p) {
     if (j == k) {
       if (p.hittable()) {
         const float nee_ratio = p.delta(k - 1) ? 0.0f : mis(float(p.n_omega / p.w_cam[k - 1]));
-        const Mis lt = p.lp_lt > 0 && cm.lt > 0 ? cm.lt_times(mis(Mis(float(p.lp_lt))), false) : 0.0;
+        const Mis lt = p.lp_lt > 0 && k >= 3 && cm.lt > 0 ? cm.lt_times(mis(Mis(float(p.lp_lt))), false) : 0.0;
         w.wh = hit_weight(nee_ratio, cm.s_cam(k), lp, cm.clamped, lt);
         w.hit = true;
       }
@@ -148,11 +148,10 @@ Weights production(const SyntheticPath &p) {
     }
     if (j == k - 1 && !p.delta(j)) {
       const float hit_ratio = p.hittable() ? mis(float(p.w_cam[j] / p.n_omega)) : 0.0f;
-      const bool first = j == 1;
       Mis lt = 0;
-      if (p.lp_lt > 0 && (first ? cm.lt_first > 0 : cm.lt > 0)) {
+      if (p.lp_lt > 0 && k >= 3 && cm.lt > 0) {
         const Mis ratio = mis(Mis(float(p.lp_lt)) * float(p.g_last()) / float(p.nk()));
-        lt = cm.lt_times(first ? ratio : mis(Mis(float(p.w_light[j]))) * ratio, first);
+        lt = cm.lt_times(mis(Mis(float(p.w_light[j]))) * ratio, false);
       }
       w.wn = nee_weight(hit_ratio, float(p.w_light[j]), cm.s_cam(k), lp, float(p.g_last()), float(p.nk()),
                         cm.clamped, lt);
