@@ -17,7 +17,10 @@
 
 namespace nimbus::caustics {
 
-// Iterations of each arm before the decision.
+// Passes of each arm before the decision. Fewer measure the first maps, whose merges' noise hides what
+// light paths save (cornell-point: with two or three passes each, 0.73-0.88 of the variance without
+// them; with eight, 0.47), and each pass without them where they pay costs the image for good (one
+// leaves 6x the variance in cornell-point's side-wall caustic).
 inline constexpr uint32_t kTrialIterations = 8;
 
 class LightPathTrial {

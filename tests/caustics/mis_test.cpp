@@ -57,8 +57,7 @@ void light_side(const SyntheticPath &p, Weights &w) {
       const Mis rho = p.lp > 0 ? mis(Mis(float(p.lp)) / Mis(lp_lt)) : 0.0;
       w.wl = lt_weight(lm.log2_A(), lm.log2_B(), lm.b_valid, v1, float(p.w_cam[1]), mis(area * neff * q),
                        mis(neff * q), mis(neff * Mis(float(p.q_later))),
-                       v1 && p.splat > 0 ? mis(Mis(p.splat)) : 0.0, rho, mis(Mis(p.lt)),
-                       w.clamped);
+                       v1 && p.splat > 0 ? mis(Mis(p.splat)) : 0.0, rho, mis(Mis(p.lt)), w.clamped);
       w.light_traced = true;
       return;
     }
@@ -114,7 +113,8 @@ Weights production(const SyntheticPath &p) {
     if (j == k) {
       if (p.hittable()) {
         const float nee_ratio = p.delta(k - 1) ? 0.0f : mis(float(p.n_omega / p.w_cam[k - 1]));
-        const Mis lt = p.lp_lt > 0 && k >= 3 && cm.lt > 0 ? cm.lt_times(mis(Mis(float(p.lp_lt))), false) : 0.0;
+        const Mis lt =
+            p.lp_lt > 0 && k >= 3 && cm.lt > 0 ? cm.lt_times(mis(Mis(float(p.lp_lt))), false) : 0.0;
         w.wh = hit_weight(nee_ratio, cm.s_cam(k), lp, cm.clamped, lt);
         w.hit = true;
       }
