@@ -187,7 +187,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
               CausticsRecord &rec) {
     if (map_active_) {
       MergingPath path(merge_, lookup_radii_[ctx], tallies_[ctx], guide_ ? &marks_[ctx] : nullptr,
-                       importance_, mix64(rng.state ^ rng.inc), pixel_radius_, size_t(y) * width_ + x);
+                       importance_, mix64(rng.state ^ rng.inc), pixel_radius_, size_t(y) * width_ + x, rec);
       trace(ctx, x, y, rng, rec, path);
     } else if (classify_) {
       ClassifyingPath path(emitters_, services().bsdf, host().get());
@@ -207,7 +207,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       services().film->accumulate(host().get(), &ctx, merge_id_, x, y, a);
     }
     const size_t i = size_t(y) * width_ + x;
-    if (armed_) useful_.add(i, rec), lens_.add_sample(i, luminance(rec.beauty));
+    if (armed_) useful_.add(i, rec), lens_.add_sample(i, rec);
   }
 
   nimbus_status_t end_iteration(uint64_t frame_iteration) override {

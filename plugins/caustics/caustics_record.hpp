@@ -23,18 +23,32 @@ struct CausticsRecord : sdk::SampleRecord {
   // the two halves of a map are independent, so its square estimates the photon noise of `merge`
   // (useful_pixels.hpp).
   float merge_split = 0;
+  // The sample's light as the same path would have brought it without light paths (light_path_trial.hpp):
+  // each contribution times its MIS weight without them over its weight with them. next_ratio is that
+  // ratio for the next add(), which the path's weight (MergingPath) sets just before it.
+  Rgb without_light_paths;
+  float next_ratio = 1;
 
   void reset() {
     SampleRecord::reset();
-    merge = Rgb(0);
+    merge = without_light_paths = Rgb(0);
     lookup_moment = {};
     merge_split = 0;
+    next_ratio = 1;
   }
 
-  // A photon-map merge contribution: always caustic light.
-  void add_merge(const Rgb &c, uint32_t group, const ElementIds &ids) {
+  // The camera-path layer's contributions (hides SampleRecord::add, which the layer calls on this type).
+  void add(const Rgb &c, uint32_t group, uint32_t segments, const ElementIds &ids, bool divert = false) {
+    SampleRecord::add(c, group, segments, ids, divert);
+    without_light_paths += c * next_ratio;
+    next_ratio = 1;
+  }
+
+  // A photon-map merge contribution: always caustic light. without: the same without light paths.
+  void add_merge(const Rgb &c, uint32_t group, const ElementIds &ids, const Rgb &without) {
     beauty += c;
     merge += c;
+    without_light_paths += without;
     if (ids.split_light) diverted += c;
     add_group(c, group, ids);
   }

@@ -37,7 +37,7 @@ class LensConnections {
     light_paths_ = splats && !timed && !emission_.empty();
     map_light_paths_ = false;
     paths_ = std::max<uint64_t>(1, pixels), work_ = 0;
-    trial_.reset(pixels, light_paths_), counted_ = false;
+    trial_.reset(pixels, light_paths_), measuring_ = false;
     merge.view_axis = axis, merge.theta_pix = theta_pix;
     merge.lt_emission = &emission_, merge.lt_paths = 0, merge.splat_paths = 0;
   }
@@ -59,28 +59,28 @@ class LensConnections {
   // (light_path_trial.hpp) has them in this pass.
   nimbus_status_t camera_pass(bool map_active, SplatInputs splats, const PhotonTracer &tracer,
                               uint64_t iteration, MergeContext &merge, SolverStats &stats) {
-    counted_ = map_active && map_light_paths_;
-    merge.lt_paths = counted_ && trial_.next_pass() ? double(paths_) : 0.0;
-    splats.trial = counted_ && trial_.measuring() ? &trial_ : nullptr;
+    merge.lt_paths = map_active && map_light_paths_ && trial_.light_paths() ? double(paths_) : 0.0;
+    measuring_ = merge.lt_paths > 0 && trial_.measuring();
+    splats.trial = measuring_ ? &trial_ : nullptr;
     if (map_active && merge.splat_paths > 0)
       if (nimbus_status_t s = splat_photons(splats, stats.mis_clamped); s != NIMBUS_OK) return s;
     if (!(merge.lt_paths > 0)) return NIMBUS_OK;
     LightTally t;
     const LightTracing in{splats.film,  splats.lightmix, &merge,    splats.pixel_radius,
-                          splats.width, splats.height,   iteration, trial_.measuring()};
+                          splats.width, splats.height,   iteration, measuring_};
     const nimbus_status_t s = trace_light_paths(tracer, splats.tasks, splats.host, in, t);
     stats.light_paths += paths_, stats.light_splats += t.splats, stats.mis_clamped += t.clamped;
-    for (const PixelLight &l : t.light) trial_.add_splat(l.pixel, l.light);
+    for (const PixelLight &l : t.light) trial_.add_splat(l.pixel, l.light, 0.0f);
     work_ += t.work;
     return s;
   }
-  // [render-thread] Pixel i's camera sample (luminance) in the current pass.
-  void add_sample(size_t i, float beauty) {
-    if (counted_) trial_.add_sample(i, beauty);
+  // [render-thread] Pixel i's camera sample in the current pass.
+  void add_sample(size_t i, const CausticsRecord &rec) {
+    if (measuring_) trial_.add_sample(i, luminance(rec.beauty), luminance(rec.without_light_paths));
   }
   // [main-thread] The current pass ended with `work` work units per camera path, all included.
   void pass_done(double work) {
-    if (counted_) trial_.pass_done(work);
+    if (measuring_) trial_.pass_done(work, pass_work_);
   }
   LightPathTrial &trial() { return trial_; }
   // [main-thread] The trial's outcome as render statistics.
@@ -97,6 +97,7 @@ class LensConnections {
   // call (camera-pass work in the budget's model), and their count for the next passes.
   uint64_t iteration_done(uint64_t pixels) {
     paths_ = std::max<uint64_t>(1, pixels);
+    pass_work_ = double(work_) / double(paths_);
     return std::exchange(work_, 0);
   }
 
@@ -108,7 +109,8 @@ class LensConnections {
   uint64_t paths_ = 0;            // light paths per camera pass
   uint64_t work_ = 0;             // their budget work units since the last iteration_done
   LightPathTrial trial_;          // whether they pay
-  bool counted_ = false;          // the current pass is one of the trial's (a map that can use them)
+  bool measuring_ = false;        // the current pass traces light paths for the trial
+  double pass_work_ = 0;          // their work per camera path in the last pass
 };
 
 }  // namespace nimbus::caustics

@@ -2,13 +2,17 @@
 // itself. Light tracing shares its paths with path tracing, merges and splats through MIS, which weighs
 // densities and not variances, so no model of how shares shift when it is added predicts its worth: in
 // a closed room under a point light it renders the indirect light 4x better at equal time, on a glass
-// on an open floor it adds cost and little else. The first 2 kTrialIterations camera passes with a map
-// alternate with and without light paths; each pixel's light per iteration (its camera sample and the
-// splats into it) gives each arm's relative variance per iteration, weighted as relMSE weighs it, and
-// the arms' work per iteration their cost; light paths stay on when variance times cost is lower with
-// them. Both arms are unbiased renders, so the trial's iterations all count.
+// on an open floor it adds cost and little else. The first kTrialIterations camera passes with a map
+// trace light paths, and every sample also carries its light as the same paths would have brought it
+// without them (each contribution times its MIS weight without light paths over its weight with them:
+// exactly the pass without them, on the same random numbers). Each pixel's light per pass, with (camera
+// sample and every splat into it) and without (the same, light paths' splats left out), gives both
+// arms' relative variance per pass, weighted as relMSE weighs it, from the same passes; the work per
+// pass with and without the light paths' share their cost. Light paths stay when variance times work
+// is lower with them; no pass of the render goes without them to find out.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -17,10 +21,9 @@
 
 namespace nimbus::caustics {
 
-// Passes of each arm before the decision. Fewer measure the first maps, whose merges' noise hides what
-// light paths save (cornell-point: with two or three passes each, 0.73-0.88 of the variance without
-// them; with eight, 0.47), and each pass without them where they pay costs the image for good (one
-// leaves 6x the variance in cornell-point's side-wall caustic).
+// Passes measured before the decision: the first maps' merge noise hides what light paths save, and
+// later passes cost no image quality to measure (cornell-point: variance with / without 0.47 over
+// eight passes).
 inline constexpr uint32_t kTrialIterations = 8;
 
 class LightPathTrial {
@@ -31,40 +34,37 @@ class LightPathTrial {
   void reset(size_t pixels, bool possible) {
     state_ = possible ? State::Trial : State::Off;
     sums_.assign(possible ? pixels : 0, Sums{});
-    passes_ = 0, work_[0] = work_[1] = 0, iterations_[0] = iterations_[1] = 0;
-    arm_ = false;
+    passes_ = 0, work_[0] = work_[1] = 0;
   }
   State state() const { return state_; }
-
-  // [main-thread] Whether the next camera pass (one with a map) traces light paths; counts it.
-  bool next_pass() {
-    arm_ = state_ == State::On || (state_ == State::Trial && passes_ % 2 == 1);
-    ++passes_;
-    return arm_;
-  }
+  // Whether passes trace light paths (on trial, they do).
+  bool light_paths() const { return state_ != State::Off; }
   bool measuring() const { return state_ == State::Trial; }
 
-  // [main-thread] Light (luminance) splatted into pixel i before this pass's camera samples.
-  void add_splat(size_t i, float light) {
-    if (measuring() && i < sums_.size()) sums_[i].pending += light;
+  // [main-thread] Light (luminance) splatted into pixel i before this pass's camera samples, with light
+  // paths and as it would have been without them.
+  void add_splat(size_t i, float with, float without) {
+    if (measuring() && i < sums_.size()) sums_[i].pending[1] += with, sums_[i].pending[0] += without;
   }
-  // [render-thread] Pixel i's camera sample (each pixel belongs to one tile: no two threads meet).
-  void add_sample(size_t i, float beauty) {
+  // [render-thread] Pixel i's camera sample, with light paths and without (each pixel belongs to one
+  // tile: no two threads meet).
+  void add_sample(size_t i, float with, float without) {
     if (!measuring() || i >= sums_.size()) return;
     Sums &s = sums_[i];
-    const float v = beauty + s.pending;
-    s.pending = 0;
-    s.n[arm_] += 1, s.sum[arm_] += v, s.sum2[arm_] += v * v;
+    const float v[2] = {without + s.pending[0], with + s.pending[1]};
+    s.pending[0] = s.pending[1] = 0;
+    s.n += 1;
+    for (int a = 0; a < 2; ++a) s.sum[a] += v[a], s.sum2[a] += v[a] * v[a];
   }
 
-  // [main-thread] The pass ended; work: its work units per camera path (camera paths, light paths and
-  // the photon paths of its map's share). Decides once both arms have kTrialIterations passes.
-  void pass_done(double work) {
+  // [main-thread] A measured pass ended: its work units per camera path, all included, and the light
+  // paths' share of them. Decides after kTrialIterations passes.
+  void pass_done(double work, double light_path_work) {
     if (!measuring()) return;
-    work_[arm_] += work, iterations_[arm_] += 1;
-    if (iterations_[0] < kTrialIterations || iterations_[1] < kTrialIterations) return;
-    const double v_off = variance(false), v_on = variance(true);
-    const double c_off = work_[0] / iterations_[0], c_on = work_[1] / iterations_[1];
+    work_[0] += work - light_path_work, work_[1] += work;
+    if (++passes_ < kTrialIterations) return;
+    const double v_off = variance(0), v_on = variance(1);
+    const double c_off = work_[0] / passes_, c_on = work_[1] / passes_;
     state_ = v_on * c_on < v_off * c_off ? State::On : State::Off;
     decision_ = {v_off, v_on, c_off, c_on};
     sums_ = std::vector<Sums>();
@@ -77,8 +77,7 @@ class LightPathTrial {
 
   template <class Writer>
   void save(Writer &w) const {
-    w.put(uint8_t(state_)), w.put(passes_), w.put(work_[0]), w.put(work_[1]);
-    w.put(iterations_[0]), w.put(iterations_[1]), w.put(decision_);
+    w.put(uint8_t(state_)), w.put(passes_), w.put(work_[0]), w.put(work_[1]), w.put(decision_);
     w.put_array(std::span<const Sums>(sums_));
   }
   template <class Reader>
@@ -87,7 +86,7 @@ class LightPathTrial {
     LightPathTrial t = *this;
     std::vector<Sums> sums;
     if (!(r.get(state) && state <= 2 && r.get(t.passes_) && r.get(t.work_[0]) && r.get(t.work_[1]) &&
-          r.get(t.iterations_[0]) && r.get(t.iterations_[1]) && r.get(t.decision_)))
+          r.get(t.decision_)))
       return false;
     t.state_ = State(state);
     if (!r.get_array(sums, t.state_ == State::Trial ? sums_.size() : 0)) return false;
@@ -97,22 +96,21 @@ class LightPathTrial {
   }
 
  private:
-  // No padding bytes, so that a saved state is the same bytes every time.
+  // No padding bytes, so that a saved state is the same bytes every time. Index 0: without light
+  // paths, 1: with them.
   struct Sums {
-    float pending = 0;                                       // splatted light awaiting this pass's sample
-    float n[2] = {0, 0}, sum[2] = {0, 0}, sum2[2] = {0, 0};  // per arm: without, with light paths
+    float pending[2] = {0, 0};  // splatted light awaiting this pass's sample
+    float n = 0, sum[2] = {0, 0}, sum2[2] = {0, 0};
   };
-  // Mean over the pixels sampled in both arms of an arm's per-iteration variance, weighted by
-  // 1 / (mean^2 + offset) with the pixel's mean over both arms.
-  double variance(bool arm) const {
+  // Mean over the sampled pixels of an arm's per-pass variance, weighted by 1 / (mean^2 + offset) with
+  // the pixel's mean with light paths.
+  double variance(int arm) const {
     double v = 0;
     uint64_t pixels = 0;
     for (const Sums &s : sums_) {
-      if (!(s.n[0] > 1 && s.n[1] > 1)) continue;
-      const double n = s.n[arm], mean = s.sum[arm] / n;
-      const double var = std::max(0.0, (s.sum2[arm] - mean * s.sum[arm]) / (n - 1));
-      const double m = (double(s.sum[0]) + s.sum[1]) / (double(s.n[0]) + s.n[1]);
-      v += var / (m * m + kRelativeOffset);
+      if (!(s.n > 1)) continue;
+      const double n = s.n, mean = s.sum[arm] / n, m = s.sum[1] / n;
+      v += std::max(0.0, (s.sum2[arm] - mean * s.sum[arm]) / (n - 1)) / (m * m + kRelativeOffset);
       ++pixels;
     }
     return pixels > 0 ? v / double(pixels) : 0.0;
@@ -120,10 +118,8 @@ class LightPathTrial {
 
   State state_ = State::Off;
   std::vector<Sums> sums_;
-  uint64_t passes_ = 0;              // camera passes with a map so far
-  double work_[2] = {0, 0};          // per arm, summed work per camera path
-  uint32_t iterations_[2] = {0, 0};  // per arm, passes measured
-  bool arm_ = false;                 // the current pass's
+  uint32_t passes_ = 0;      // passes measured
+  double work_[2] = {0, 0};  // their summed work per camera path, without and with light paths
   Decision decision_;
 };
 

@@ -48,8 +48,9 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
   // the first photon found: most lookups find none (query() turns them away first).
   uint32_t ng_code = 0;
   bool ng_encoded = false;
-  Rgb sum(0);    // the lookup's light (without LightMix, one record entry per lookup)
-  Rgb split(0);  // the same from even-numbered photon paths minus odd-numbered ones
+  Rgb sum(0);          // the lookup's light (without LightMix, one record entry per lookup)
+  Rgb split(0);        // the same from even-numbered photon paths minus odd-numbered ones
+  Rgb sum_without(0);  // the lookup's light without light paths
   const uint32_t leaves = mc.map->query(Vec3f::load(ix.p), r, [&](const PhotonData &ph, float d2) {
     const uint32_t k = s + ph.depth();
     if (k > mc.max_depth) return;
@@ -82,16 +83,24 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
     const float kernel = kernel_norm * (1 - d2 / r2) * in_time;
     const Rgb c = fr * power * (w * kernel);
     if (!is_finite(c) || is_black(c)) return;
+    // The same merge without light paths, for their trial (light_path_trial.hpp).
+    const Rgb c_without =
+        lt > 0 ? c * (merge_weight(ph.A, ph.B, ph.b_valid(), ph.prev_rough(), pdf_fwd, pdf_rev, eta, m_neff,
+                                   m_neff_b, mis_state.gamma_sum(k), mis_state.clamped, eta_splat) /
+                      w)
+               : c;
     const uint32_t path = mc.map->path_of(ph);
     if (mc.path_use) mc.path_use->mark(path);
-    if (mc.ids.lightmix) rec.add_merge(beta * c * inv_paths, (*mc.light_group)[ph.light()], mc.ids);
-    sum += c;
+    if (mc.ids.lightmix)
+      rec.add_merge(beta * c * inv_paths, (*mc.light_group)[ph.light()], mc.ids,
+                    beta * c_without * inv_paths);
+    sum += c, sum_without += c_without;
     split += path & 1u ? -c : c;
   });
   if (is_black(sum)) return {leaves, evaluated, 0.0f, density_count};
   rec.merge_split += luminance(beta * split * inv_paths);
   const Rgb light = beta * sum * inv_paths;
-  if (!mc.ids.lightmix) rec.add_merge(light, 0, mc.ids);
+  if (!mc.ids.lightmix) rec.add_merge(light, 0, mc.ids, beta * sum_without * inv_paths);
   return {leaves, evaluated, luminance(light), density_count};
 }
 

@@ -181,10 +181,12 @@ class MergingPath {
   // when no guide is bound).
   // key: the camera sample's own hash, from which the lookup roulette draws (not from the camera path's
   // random numbers, which stay those of nimbus.pt). pixel: the sample's pixel in pixel_radius.
+  // rec: the sample's record, whose next_ratio each weight sets (light_path_trial.hpp).
   MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, CameraTally &tally,
               ImportanceMarks *marks, const ImportanceMap &importance, uint64_t key,
-              PixelRadius &pixel_radius, size_t pixel)
-      : mc_(mc),
+              PixelRadius &pixel_radius, size_t pixel, CausticsRecord &rec)
+      : rec_(&rec),
+        mc_(mc),
         radii_(lookup_radii),
         tally_(tally),
         marks_(marks),
@@ -214,8 +216,10 @@ class MergingPath {
       const float lp_lt = mc_.lt_emission->lp(*mc_.emitters, h.light, h.p, h.n, h.wo);
       if (lp_lt > 0) lt = mis_.lt_times(mis(Mis(lp_lt)), false);
     }
-    return {hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped, lt),
-            lp > 0 && mis_.eligible(h.segments)};
+    const float w = hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped, lt);
+    if (lt > 0)
+      rec_->next_ratio = ratio_without(w, hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped));
+    return {w, lp > 0 && mis_.eligible(h.segments)};
   }
 
   void vertex(const sdk::PathVertex &v, CausticsRecord &rec) {
@@ -279,6 +283,9 @@ class MergingPath {
     }
     const float w =
         nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk, mis_.clamped, lt);
+    if (lt > 0)
+      rec_->next_ratio = ratio_without(
+          w, nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk, mis_.clamped));
     return {w, lp > 0 && mis_.eligible(s.segments)};
   }
 
@@ -290,6 +297,10 @@ class MergingPath {
   }
 
  private:
+  // A contribution's weight without light paths over its weight with them (1 where that is undefined).
+  static float ratio_without(float with, float without) { return with > 0 ? without / with : 1.0f; }
+
+  CausticsRecord *rec_;
   const MergeContext &mc_;
   RadiusHistogram &radii_;  // this worker's lookup radii
   CameraTally &tally_;
