@@ -1,7 +1,8 @@
 // The techniques that connect light-side vertices to the lens: stored photons (the splat technique,
 // photon_splats.hpp) and the vertices of light paths of their own (the light-tracing technique,
-// light_paths.hpp). Whether a render and each map can use them, what they tell the photon tracer and
-// the camera side (MergeContext), and their work in every camera pass that uses a map.
+// light_paths.hpp). Whether a render and each map can use them (and whether light paths pay:
+// light_path_trial.hpp), what they tell the photon tracer and the camera side (MergeContext), and their
+// work in every camera pass that uses a map.
 #pragma once
 
 #include <nimbus/nimbus.hpp>

@@ -13,7 +13,9 @@
 // evaluates its emission density lp_lt at every path end; the light side runs PhotonMis with lp_lt and
 // the photon tracer's rules for where photons would have been stored, so the merges and splats it
 // competes with are those the solver really has (rho = (lp_ph / lp_lt)^2 converts their densities).
-// Off where a camera pass has no map, for dispersion, moving scenes, guided maps and infinite lights.
+// Off where a camera pass has no map, for dispersion, moving scenes, guided maps, pixel filters wider
+// than a pixel and infinite lights, and where the render's own trial finds they do not pay
+// (light_path_trial.hpp).
 #pragma once
 
 #include <nimbus/nimbus.hpp>

@@ -48,8 +48,8 @@ void expect_decision(const Arms &a, LightPathTrial::State want) {
   }
   EXPECT_EQ(t.state(), want);
   const LightPathTrial::Decision &d = t.decision();
-  // Each arm's mean over 20000 pixels of a variance with kTrialIterations - 1 = 7 degrees of freedom:
-  // relative standard error sqrt(2 / 7 / 20000) = 0.38 %, plus under 0.2 % from the weights' noisy
+  // Each arm's mean over 20000 pixels of a variance with kTrialIterations - 1 = 3 degrees of freedom:
+  // relative standard error sqrt(2 / 3 / 20000) = 0.58 %, plus under 0.3 % from the weights' noisy
   // means (sigma 0.1 of 1); 2.5 % is over 4 sigma.
   EXPECT_NEAR(d.v_off, weighted(a.sigma_without), 0.025 * weighted(a.sigma_without));
   EXPECT_NEAR(d.v_on, weighted(a.sigma_with), 0.025 * weighted(a.sigma_with));
