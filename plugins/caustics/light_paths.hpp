@@ -20,7 +20,6 @@
 
 #include <nimbus/nimbus.hpp>
 
-#include <atomic>
 #include <cstdint>
 #include <vector>
 

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "lights/environment_map_fixture.hpp"
@@ -112,26 +114,16 @@ lights:
 // measured 0.67, 0.14 and 0.74). Light paths without their MIS weights would double the floor's
 // indirect light; without light paths the trial's statistic fails.
 TEST(CausticsRender, LightPathsInAClosedBoxConvergeToLightTracer) {
-  const std::string scene = R"(
-render: { resolution: [64, 64], max_depth: 8 }
-camera: { position: [0, -3.9, 1], look_at: [0, 0, 1], up: [0, 0, 1], fov: 39 }
-materials:
-  white:  { type: diffuse, albedo: [0.75, 0.75, 0.75] }
-  red:    { type: diffuse, albedo: [0.63, 0.065, 0.05] }
-  green:  { type: diffuse, albedo: [0.14, 0.45, 0.091] }
-  glass:  { type: dielectric, ior: 1.5 }
-  mirror: { type: conductor, reflectance: [0.95, 0.95, 0.95] }
-objects:
-  - { shape: rectangle, size: [2, 2], material: white }
-  - { shape: rectangle, size: [2, 2], material: white, transform: { rotate: [180, 0, 0], translate: [0, 0, 2] } }
-  - { shape: rectangle, size: [2, 2], material: white, transform: { rotate: [90, 0, 0], translate: [0, 1, 1] } }
-  - { shape: rectangle, size: [2, 2], material: red, transform: { rotate: [0, 90, 0], translate: [-1, 0, 1] } }
-  - { shape: rectangle, size: [2, 2], material: green, transform: { rotate: [0, -90, 0], translate: [1, 0, 1] } }
-  - { shape: sphere, center: [0.4, -0.25, 0.33], radius: 0.33, material: glass }
-  - { shape: sphere, center: [-0.45, 0.35, 0.33], radius: 0.33, material: mirror }
-lights:
-  - { type: point, position: [0.1, 0.0, 1.8], intensity: [9, 8.5, 7.5] }
-)";
+  // The shipped scene at 64 x 64 and a maximum path length of 8.
+  std::ifstream file(std::string(NIMBUS_SOURCE_DIR) + "/scenes/caustics/cornell-point.yaml");
+  std::string scene((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  for (const auto &[from, to] :
+       {std::pair<std::string, std::string>{"resolution: [512, 512]", "resolution: [64, 64]"},
+        {"max_depth: 12", "max_depth: 8"}}) {
+    const size_t at = scene.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    scene.replace(at, from.size(), to);
+  }
   SceneRenderer r;
   const Region regions[] = {{38, 58, 50, 61}, {58, 53, 62, 58}, {16, 8, 48, 24}};
   const char *names[] = {"floor in the glass sphere's shadow", "side-wall caustic", "back wall"};
