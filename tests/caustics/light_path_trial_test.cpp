@@ -1,8 +1,9 @@
 // The light-path trial (light_path_trial.hpp): from the same passes it measures the per-pass variance
 // of each pixel's light with light paths (camera sample plus every splat) and without them (the
 // sample's light without them plus the splats that would remain), against the variances the test
-// draws; it keeps light paths exactly when variance times work is lower with them, stops measuring once
-// decided, and its state's round trip mid-trial changes nothing.
+// draws; it keeps light paths exactly when variance times work is lower with them, decides early when
+// the two are far apart, stops measuring once decided, and its state's round trip mid-trial changes
+// nothing.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,22 +38,26 @@ void run_pass(LightPathTrial &t, std::mt19937_64 &rng, const Arms &a) {
 // What the trial should measure: sigma^2 weighted as relMSE weighs it.
 double weighted(double sigma) { return sigma * sigma / (kMean * kMean + kRelativeOffset); }
 
-void expect_decision(const Arms &a, LightPathTrial::State want) {
+// Runs passes until the trial decides; it should decide `want` after `passes` passes.
+void expect_decision(const Arms &a, LightPathTrial::State want, uint32_t passes) {
   LightPathTrial t;
   t.reset(kPixels, true);
   std::mt19937_64 rng(7);
-  for (uint32_t p = 0; p < kTrialIterations; ++p) {
-    ASSERT_TRUE(t.measuring()) << "pass " << p;
+  uint32_t run = 0;
+  while (t.measuring() && run < kTrialIterations) {
     EXPECT_TRUE(t.light_paths());
     run_pass(t, rng, a);
+    ++run;
   }
+  EXPECT_EQ(run, passes);
   EXPECT_EQ(t.state(), want);
   const LightPathTrial::Decision &d = t.decision();
-  // Each arm's mean over 20000 pixels of a variance with kTrialIterations - 1 = 3 degrees of freedom:
-  // relative standard error sqrt(2 / 3 / 20000) = 0.58 %, plus under 0.3 % from the weights' noisy
-  // means (sigma 0.1 of 1); 2.5 % is over 4 sigma.
-  EXPECT_NEAR(d.v_off, weighted(a.sigma_without), 0.025 * weighted(a.sigma_without));
-  EXPECT_NEAR(d.v_on, weighted(a.sigma_with), 0.025 * weighted(a.sigma_with));
+  // Each arm's mean over 20000 pixels of a variance with passes - 1 degrees of freedom: relative
+  // standard error sqrt(2 / (passes - 1) / 20000) (1.0 % after 2 passes, 0.58 % after 4), plus under
+  // 0.3 % from the weights' noisy means (sigma 0.1 of 1): 4 of the former plus 0.5 %.
+  const double tol = 4 * std::sqrt(2.0 / (passes - 1) / kPixels) + 0.005;
+  EXPECT_NEAR(d.v_off, weighted(a.sigma_without), tol * weighted(a.sigma_without));
+  EXPECT_NEAR(d.v_on, weighted(a.sigma_with), tol * weighted(a.sigma_with));
   EXPECT_DOUBLE_EQ(d.c_off, a.work - a.light_path_work);
   EXPECT_DOUBLE_EQ(d.c_on, a.work);
   // Decided: nothing more is measured, and light paths follow the decision.
@@ -61,10 +66,14 @@ void expect_decision(const Arms &a, LightPathTrial::State want) {
 }
 
 TEST(LightPathTrial, KeepsLightPathsWhereVarianceTimesWorkIsLower) {
-  // Half the variance for 1.5x the work: 0.75 < 1.
-  expect_decision({0.1, 0.1 / std::sqrt(2.0), 15, 5}, LightPathTrial::State::On);
+  // Far apart, decided after kEarlyIterations passes. Half the variance for 1.5x the work: 0.75 < 1.
+  expect_decision({0.1, 0.1 / std::sqrt(2.0), 15, 5}, LightPathTrial::State::On, kEarlyIterations);
   // 10 % less variance for 1.5x the work: 1.35 > 1.
-  expect_decision({0.1, 0.1 * std::sqrt(0.9), 15, 5}, LightPathTrial::State::Off);
+  expect_decision({0.1, 0.1 * std::sqrt(0.9), 15, 5}, LightPathTrial::State::Off, kEarlyIterations);
+  // Within kEarlyMargin, decided after kTrialIterations. 40 % less variance for 1.5x the work: 0.9 < 1.
+  expect_decision({0.1, 0.1 * std::sqrt(0.6), 15, 5}, LightPathTrial::State::On, kTrialIterations);
+  // 25 % less variance for 1.5x the work: 1.125 > 1.
+  expect_decision({0.1, 0.1 * std::sqrt(0.75), 15, 5}, LightPathTrial::State::Off, kTrialIterations);
 }
 
 TEST(LightPathTrial, WithoutLightPathsThereIsNoTrial) {
@@ -78,7 +87,7 @@ TEST(LightPathTrial, WithoutLightPathsThereIsNoTrial) {
 // A render saved mid-trial and resumed decides exactly as one that ran on; a state of another image
 // size is refused.
 TEST(LightPathTrial, StateRoundTripMidTrialDecidesTheSame) {
-  const Arms arms{0.1, 0.08, 14, 4};
+  const Arms arms{0.1, 0.08, 14, 4};  // 0.64 x 1.4 = 0.9: within kEarlyMargin, decided after 4 passes
   LightPathTrial a;
   a.reset(kPixels, true);
   std::mt19937_64 rng_a(11);
