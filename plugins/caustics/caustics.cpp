@@ -111,8 +111,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     // No splats for lookups that ignore photon times (a measurement option): merges then mix times.
     lens_.begin_render(emitters_,
                        armed_ && options_.times_matched && splats_possible(h, services(), spectral()),
-                       merge_.clock.timed(), normalize(Vec3f::load(eye.dir)), theta_pix_,
-                       uint64_t(width_) * height_, merge_);
+                       normalize(Vec3f::load(eye.dir)), theta_pix_, uint64_t(width_) * height_, merge_);
     // The `caustics` element is the light of a class of paths (spec 8), with or without a map, and with
     // the switch off too (then the path tracer's share of that light).
     classify_ = caustics_can_form && ids().diverted != NIMBUS_ELEMENT_INVALID;

@@ -29,13 +29,13 @@ class LensConnections {
   }
 
   // [main-thread] A new render. splats: photons can be splatted (splats_possible, lookups that match
-  // photon times); timed: photons carry scene times (no light paths then: their weights would need the
-  // merges' time windows). axis, theta_pix: the view axis and a pixel's angular width (camera_density).
-  void begin_render(const EmitterSet &emitters, bool splats, bool timed, const Vec3f &axis, float theta_pix,
+  // photon times); light paths need the same. axis, theta_pix: the view axis and a pixel's angular width
+  // (camera_density).
+  void begin_render(const EmitterSet &emitters, bool splats, const Vec3f &axis, float theta_pix,
                     uint64_t pixels, MergeContext &merge) {
     splat_camera_ = {splats, axis, theta_pix};
     emission_.build(emitters);
-    light_paths_ = splats && !timed && !emission_.empty();
+    light_paths_ = splats && !emission_.empty();
     map_light_paths_ = false;
     paths_ = std::max<uint64_t>(1, pixels), work_ = 0;
     trial_.reset(pixels, light_paths_), measuring_ = false;

@@ -54,31 +54,36 @@ void PhotonTracer::trace_light(const nimbus_thread_ctx_t &ctx, uint64_t path, co
   if (li < 0 || !(sel > 0)) return;
   const uint32_t light = uint32_t(li);
   const Emitter &em = emitters_[light];
+  // A scene time when something moves, drawn from the shutter's curve as photons and camera paths draw
+  // theirs (photon_windows.hpp): the path's merges would take photons of a window around it.
+  const float time_u = scene_.timed ? next_uniform(rng) : 0.0f;
+  const float time = scene_.timed ? svc_.camera->sample_time(h, time_u, nullptr) : 0.0f;
   const float ue[4] = {next_uniform(rng), next_uniform(rng), next_uniform(rng), next_uniform(rng)};
   nimbus_light_emission_t es;
-  scene_.sample_emission(h, light, ue, 0.0f, es);
+  scene_.sample_emission(h, light, ue, time, es);
   if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0) || (es.flags & NIMBUS_LIGHT_INFINITE)) return;
   const bool delta_pos = es.flags & NIMBUS_LIGHT_DELTA_POSITION;
   const Vec3f org = Vec3f::load(es.org), n_e = Vec3f::load(es.n), dir0 = Vec3f::load(es.dir);
   const float cos_e = delta_pos ? 1.0f : std::abs(dot(n_e, dir0));
-  const float lp = mc.lt_emission->lp(emitters_, light, org, n_e, dir0);
+  const float lp = mc.lt_emission->lp(emitters_, light, org, n_e, dir0, time);
   Rgb beta = Rgb::load(es.Le) * (cos_e / (sel * (delta_pos ? 1.0f : es.pdf_pos) * es.pdf_dir));
   if (!(lp > 0) || is_black(beta) || !is_finite(beta)) return;
   PhotonMis state;
   state.emit(em.hittable(), cos_e, lp);
   LightVertexClass c;
   c.light = light;
-  c.rho = std::exp2(Mis(density_ratio_log2(emitters_.lp(light, org, n_e, dir0, org), lp)));
+  c.time = time, c.time_u = time_u;
+  c.rho = std::exp2(Mis(density_ratio_log2(emitters_.lp(light, org, n_e, dir0, org, time), lp)));
 
   nimbus_ray_t ray = sdk::emission_ray(org, dir0, es.flags);
   bool had_sharp = false, prev_rough = false, alive = true;  // alive: a photon path would go on
   for (uint32_t depth = 1; depth < max_depth_; ++depth) {
     nimbus_hit_t hit;
-    scene_.intersect(h, ctx, ray, 0.0f, hit);
+    scene_.intersect(h, ctx, ray, time, hit);
     out.work += kLightPathRayWork;
     if (hit.geom_id == NIMBUS_NONE) return;
     nimbus_interaction_t ix;
-    scene_.interaction(h, ray, hit, 0.0f, ix);
+    scene_.interaction(h, ray, hit, time, ix);
     const Vec3f wo = -Vec3f::load(ray.dir), ng = Vec3f::load(ix.ng);
     const float c_in = std::abs(dot(ng, wo));
     if (!(c_in > 0)) return;
@@ -124,7 +129,7 @@ void PhotonTracer::connect_light_vertex(const nimbus_thread_ctx_t &ctx, const ni
                                         const LightTracing &in, LightTally &out) const {
   const MergeContext &mc = *in.merge;
   LensLink link;
-  if (!link_to_lens(ctx, ix, wo, beta, lens_u, 0.0f, false, mc.view_axis, mc.theta_pix, link, out.work,
+  if (!link_to_lens(ctx, ix, wo, beta, lens_u, c.time, false, mc.view_axis, mc.theta_pix, link, out.work,
                     kLightPathRayWork))
     return;
   const float *raster = link.raster;
@@ -134,7 +139,7 @@ void PhotonTracer::connect_light_vertex(const nimbus_thread_ctx_t &ctx, const ni
   // A merge at x_1 needs the photon on the camera's side of the surface (merging.cpp's side test).
   const bool v1 = c.stored && link.same_side;
   const MergeDensities md =
-      first_merge_densities(mc, *in.pixel_radius, size_t(y) * in.width + x, link.length, 0.0f);
+      first_merge_densities(mc, *in.pixel_radius, size_t(y) * in.width + x, link.length, c.time_u);
   const double density = link.density;
   const Mis eta_splat = v1 && mc.splat_paths > 0 ? mis(splat_eta(mc.splat_paths, density)) : 0.0;
   bool clamped = false;

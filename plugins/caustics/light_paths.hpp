@@ -13,9 +13,10 @@
 // evaluates its emission density lp_lt at every path end; the light side runs PhotonMis with lp_lt and
 // the photon tracer's rules for where photons would have been stored, so the merges and splats it
 // competes with are those the solver really has (rho = (lp_ph / lp_lt)^2 converts their densities).
-// Off where a camera pass has no map, for dispersion, moving scenes, guided maps, pixel filters wider
-// than a pixel and infinite lights, and where the render's own trial finds they do not pay
-// (light_path_trial.hpp).
+// In a moving scene each light path has its own time, as a splatted photon does: no window of times,
+// the merges' window share in their densities (merging.hpp, first_merge_densities). Off where a camera
+// pass has no map, for dispersion, guided maps, pixel filters wider than a pixel and infinite lights,
+// and where the render's own trial finds they do not pay (light_path_trial.hpp).
 #pragma once
 
 #include <nimbus/nimbus.hpp>
@@ -106,6 +107,7 @@ struct LightVertexClass {
   uint32_t light = 0, depth = 0;  // its light; segments from the light (it completes depth + 1)
   bool stored = false;            // the photon tracer would have stored a photon here
   Mis rho = 0;                    // mis(lp_ph / lp_lt) of the path's emission
+  float time = 0, time_u = 0;     // the path's scene time and its share of the exposure (0: static)
 };
 
 // Light (luminance) a connection added to pixel `pixel` (light_path_trial.hpp).

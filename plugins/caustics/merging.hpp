@@ -144,7 +144,7 @@ inline float effective_photons(const MergeContext &mc, const Vec3f &x) {
 // lp (mis.hpp) of the light a camera path hit, and of the one its NEE sampled: the photon density of
 // the path's last segment, 0 where no photon is emitted that way (then no merge technique exists).
 inline float hit_lp(const EmitterSet &emitters, const sdk::LightHit &h) {
-  return emitters.lp(h.light, h.p, h.n, h.wo, Vec3f::load(h.prev->p));
+  return emitters.lp(h.light, h.p, h.n, h.wo, Vec3f::load(h.prev->p), h.time);
 }
 inline float nee_lp(const EmitterSet &emitters, const sdk::LightSample &s) {
   return emitters.lp(s.light, Vec3f::load(s.ls->p), Vec3f::load(s.ls->n), -s.wi, Vec3f::load(s.ix->p),
@@ -213,7 +213,7 @@ class MergingPath {
     const float lp = hit_lp(*mc_.emitters, h);
     Mis lt = 0;
     if (h.segments >= 3 && mis_.lt > 0) {  // light paths leave direct light to path tracing
-      const float lp_lt = mc_.lt_emission->lp(*mc_.emitters, h.light, h.p, h.n, h.wo);
+      const float lp_lt = mc_.lt_emission->lp(*mc_.emitters, h.light, h.p, h.n, h.wo, h.time);
       if (lp_lt > 0) lt = mis_.lt_times(mis(Mis(lp_lt)), false);
     }
     const float w = hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped, lt);

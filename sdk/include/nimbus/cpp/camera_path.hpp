@@ -48,6 +48,7 @@ struct LightHit {
   Vec3f wo;               // towards the previous vertex (for infinite lights: minus the direction)
   const nimbus_interaction_t *prev = nullptr;  // the vertex the ray left
   uint32_t segments = 0;                       // segments of the path up to the light
+  float time = 0;                              // the path's scene time (0 when nothing moves)
 };
 
 // A light sample that reached vertex `ix` unoccluded.
@@ -204,7 +205,7 @@ class CameraPathIntegrator : public Integrator {
       scene_.intersect(h, ctx, ray, time, hit);
       const Vec3f dir = Vec3f::load(ray.dir);
       if (hit.geom_id == NIMBUS_NONE) {
-        add_infinite(rec, beta, spectrum, prev, dir, specular, prev_pdf, segments, path);
+        add_infinite(rec, beta, spectrum, prev, dir, specular, prev_pdf, segments, time, path);
         break;
       }
       nimbus_interaction_t ix;
@@ -222,8 +223,8 @@ class CameraPathIntegrator : public Integrator {
         svc_.lights->eval_emitted(h, &ix, wo_arr, le);
         const Rgb Le = spectrum.light(Rgb::load(le));
         if (!is_black(Le)) {
-          LightHit lh{ix.light_id,        specular, prev_pdf, 0,       Vec3f::load(ix.p),
-                      Vec3f::load(ix.ng), wo,       &prev,    segments};
+          LightHit lh{ix.light_id,        specular, prev_pdf, 0,        Vec3f::load(ix.p),
+                      Vec3f::load(ix.ng), wo,       &prev,    segments, time};
           if (!specular)
             lh.light_pdf = selection_.pmf(&prev, ix.light_id) *
                            svc_.lights->pdf_incident(h, ix.light_id, &prev, ray.dir, &ix);
@@ -276,7 +277,7 @@ class CameraPathIntegrator : public Integrator {
   template <class Path>
   void add_infinite(Record &rec, const Rgb &beta, const PathSpectrum &spectrum,
                     const nimbus_interaction_t &prev, const Vec3f &dir, bool specular, float prev_pdf,
-                    uint32_t segments, Path &path) const {
+                    uint32_t segments, float time, Path &path) const {
     const nimbus_host_t *h = host().get();
     float d[3];
     dir.store(d);
@@ -285,7 +286,7 @@ class CameraPathIntegrator : public Integrator {
       svc_.lights->eval_infinite(h, l, d, le);
       const Rgb Le = spectrum.light(Rgb::load(le));
       if (is_black(Le)) continue;
-      LightHit lh{l, specular, prev_pdf, 0, Vec3f(), Vec3f(), -dir, &prev, segments};
+      LightHit lh{l, specular, prev_pdf, 0, Vec3f(), Vec3f(), -dir, &prev, segments, time};
       if (!specular)
         lh.light_pdf = selection_.pmf(&prev, l) * svc_.lights->pdf_incident(h, l, &prev, d, nullptr);
       const PathWeight w = path.hit(lh);
