@@ -76,48 +76,28 @@ void PhotonTracer::trace_light(const nimbus_thread_ctx_t &ctx, uint64_t path, co
   c.rho = std::exp2(Mis(density_ratio_log2(emitters_.lp(light, org, n_e, dir0, org, time), lp)));
 
   nimbus_ray_t ray = sdk::emission_ray(org, dir0, es.flags);
+  const sdk::PathSpectrum rgb(h, nullptr, svc_.bsdf);        // light paths are off where light disperses
   bool had_sharp = false, prev_rough = false, alive = true;  // alive: a photon path would go on
   for (uint32_t depth = 1; depth < max_depth_; ++depth) {
-    nimbus_hit_t hit;
-    scene_.intersect(h, ctx, ray, time, hit);
-    out.work += kLightPathRayWork;
-    if (hit.geom_id == NIMBUS_NONE) return;
-    nimbus_interaction_t ix;
-    scene_.interaction(h, ray, hit, time, ix);
-    const Vec3f wo = -Vec3f::load(ray.dir), ng = Vec3f::load(ix.ng);
-    const float c_in = std::abs(dot(ng, wo));
-    if (!(c_in > 0)) return;
-    state.arrive(c_in);
-    const nimbus_lobe_t lobes = svc_.bsdf->lobes(h, &ix);
-    const bool rough = !is_sharp(svc_.bsdf, h_, ix, lobes);
-    const bool smooth_only = !has(lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
-    const Mis nee_term = depth == 1 && !smooth_only ? first_vertex_nee(ix, light, em, es, wo, lp, c_in) : 0.0;
+    LightSideVertex v;
+    if (!arrive(ctx, ray, time, state, v, out.work, kLightPathRayWork)) return;
+    const Mis nee_term =
+        depth == 1 && !v.smooth_only ? first_vertex_nee(v.ix, light, em, es, v.wo, lp, v.c_in) : 0.0;
     c.depth = depth;
-    c.stored = alive && rough && had_sharp && depth <= kPhotonMaxVertices;
-    if (rough && !smooth_only && depth >= 2) {
+    c.stored = alive && v.rough && had_sharp && depth <= kPhotonMaxVertices;
+    if (v.rough && !v.smooth_only && depth >= 2) {
       const float lens_u[2] = {next_uniform(rng), next_uniform(rng)};
-      connect_light_vertex(ctx, ix, wo, beta, state, c, lens_u, in, out);
+      connect_light_vertex(ctx, v.ix, v.wo, beta, state, c, lens_u, in, out);
     }
-    if (rough && (depth == 1 || prev_rough)) alive = false;
+    if (v.rough && (depth == 1 || prev_rough)) alive = false;
     if (depth + 1 >= max_depth_) return;  // the next vertex would complete more than max_depth segments
 
-    float wo_arr[3];
     const float u[3] = {next_uniform(rng), next_uniform(rng), next_uniform(rng)};
-    wo.store(wo_arr);
-    nimbus_bsdf_sample_t bs;
-    svc_.bsdf->sample(h, &ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
-    if (!(bs.pdf > 0)) return;
-    const Vec3f wi = Vec3f::load(bs.wi);
-    const bool delta = has(bs.lobe, NIMBUS_LOBE_SPECULAR);
-    state.scatter(std::abs(dot(ng, wi)), bs.pdf, bs.pdf_rev, rough, c.stored, delta ? 0.0 : nee_term);
-    const Rgb t = Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(ix.ns))) / bs.pdf);
-    const float q = std::min(1.0f, max_component(t));
-    if (!(q > 0) || next_uniform(rng) >= q) return;
-    beta *= t / q;
-    if (is_black(beta) || !is_finite(beta)) return;
-    prev_rough = rough;
-    had_sharp = had_sharp || !rough;
-    svc_.scene->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
+    if (!scatter(
+            v, rgb, u, [&] { return next_uniform(rng); }, c.stored, nee_term, 0.0f, state, beta, ray))
+      return;
+    prev_rough = v.rough;
+    had_sharp = had_sharp || !v.rough;
   }
 }
 

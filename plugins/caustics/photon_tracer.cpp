@@ -108,39 +108,29 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
 
   bool had_sharp = false, prev_rough = false;
   for (uint32_t depth = 1; depth <= kPhotonMaxVertices; ++depth) {
-    nimbus_hit_t hit;
-    scene_.intersect(h, ctx, ray, time, hit);
-    out.work += kRayWork;
-    if (hit.geom_id == NIMBUS_NONE) return target;
-    nimbus_interaction_t ix;
-    scene_.interaction(h, ray, hit, time, ix);
-    const Vec3f wo = -Vec3f::load(ray.dir), ng = Vec3f::load(ix.ng);
-    const float c_in = std::abs(dot(ng, wo));
-    if (!(c_in > 0)) return target;
-    mis_state.arrive(c_in);
-    const nimbus_lobe_t lobes = svc_.bsdf->lobes(h, &ix);
+    LightSideVertex v;
+    if (!arrive(ctx, ray, time, mis_state, v, out.work, kRayWork)) return target;
+    const nimbus_interaction_t &ix = v.ix;
     spectrum.disperse(
-        lobes, [&] { return samples.next(); }, beta, false);
-    const bool rough = !is_sharp(svc_.bsdf, h_, ix, lobes);
+        v.lobes, [&] { return samples.next(); }, beta, false);
     // A photon path that missed every sharp surface ends at its first vertex (see CameraMis: merges
     // need a sharp first photon vertex). Its only photons would come after a rough-sharp-rough
     // sequence, which path tracing samples with NEE at that first vertex, as for directions outside
     // the emission target; tracing them on would cost a large share of the photon vertices.
-    if (rough && depth == 1) return target;
-    const bool smooth_only = !has(lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
+    if (v.rough && depth == 1) return target;
     Mis nee_term = 0;
-    if (depth == 1 && !smooth_only) nee_term = first_vertex_nee(ix, light, em, es, wo, lp, c_in);
+    if (depth == 1 && !v.smooth_only) nee_term = first_vertex_nee(ix, light, em, es, v.wo, lp, v.c_in);
 
     // Store after a sharp bounce; a photon of depth d completes paths of >= d + 1 segments.
-    const bool stored = rough && had_sharp && depth + 1 <= max_depth_;
+    const bool stored = v.rough && had_sharp && depth + 1 <= max_depth_;
     float vertex_importance = 0;
     if (stored) {
       if (importance) vertex_importance = importance->at(Vec3f::load(ix.p));
       target = std::max(target, vertex_importance);
       Photon ph;
       std::memcpy(ph.p, ix.p, sizeof(ph.p));
-      ph.dir = encode_octahedral(wo);
-      ph.normal = encode_octahedral(ng);
+      ph.dir = encode_octahedral(v.wo);
+      ph.normal = encode_octahedral(v.ng);
       beta.store(ph.power);
       ph.A = mis_state.log2_A();
       ph.B = mis_state.log2_B();
@@ -153,31 +143,37 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
       ph.lt = lt_ratio;
       out.photons.push_back(ph);
       out.work += kPhotonWork;
-      if (splat_.enabled) connect_to_lens(ctx, ix, wo, beta, time, hash_keys({path, depth}), out);
+      if (splat_.enabled) connect_to_lens(ctx, ix, v.wo, beta, time, hash_keys({path, depth}), out);
     }
-    if (rough && prev_rough) return target;  // two consecutive rough vertices
+    if (v.rough && prev_rough) return target;  // two consecutive rough vertices
     if (depth == kPhotonMaxVertices) return target;
 
-    float wo_arr[3], u[3] = {samples.next(), samples.next(), samples.next()};
-    wo.store(wo_arr);
-    nimbus_bsdf_sample_t bs;
-    spectrum.sample(&ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
-    if (!(bs.pdf > 0)) return target;
-    const Vec3f wi = Vec3f::load(bs.wi);
-    const bool delta = has(bs.lobe, NIMBUS_LOBE_SPECULAR);
-    mis_state.scatter(std::abs(dot(ng, wi)), bs.pdf, bs.pdf_rev, rough, stored, delta ? 0.0 : nee_term,
-                      vertex_importance);
-    const Rgb t = Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(ix.ns))) / bs.pdf);
-    // Russian roulette on this bounce's throughput: photon power stays roughly constant.
-    const float q = std::min(1.0f, max_component(t));
-    if (!(q > 0) || samples.next() >= q) return target;
-    beta *= t / q;
-    if (is_black(beta) || !is_finite(beta)) return target;
-    prev_rough = rough;
-    had_sharp = had_sharp || !rough;
-    svc_.scene->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
+    const float u[3] = {samples.next(), samples.next(), samples.next()};
+    if (!scatter(
+            v, spectrum, u, [&] { return samples.next(); }, stored, nee_term, vertex_importance, mis_state,
+            beta, ray))
+      return target;
+    prev_rough = v.rough;
+    had_sharp = had_sharp || !v.rough;
   }
   return target;
+}
+
+bool PhotonTracer::arrive(const nimbus_thread_ctx_t &ctx, const nimbus_ray_t &ray, float time, PhotonMis &mis,
+                          LightSideVertex &v, uint64_t &work, uint64_t ray_work) const {
+  nimbus_hit_t hit;
+  scene_.intersect(h_, ctx, ray, time, hit);
+  work += ray_work;
+  if (hit.geom_id == NIMBUS_NONE) return false;
+  scene_.interaction(h_, ray, hit, time, v.ix);
+  v.wo = -Vec3f::load(ray.dir), v.ng = Vec3f::load(v.ix.ng);
+  v.c_in = std::abs(dot(v.ng, v.wo));
+  if (!(v.c_in > 0)) return false;
+  mis.arrive(v.c_in);
+  v.lobes = svc_.bsdf->lobes(h_, &v.ix);
+  v.rough = !is_sharp(svc_.bsdf, h_, v.ix, v.lobes);
+  v.smooth_only = !has(v.lobes, NIMBUS_LOBE_DIFFUSE | NIMBUS_LOBE_GLOSSY);
+  return true;
 }
 
 // The splat of the photon just stored at ix (photon_splats.hpp): its light towards the lens, as a light

@@ -23,6 +23,7 @@
 #include "photon_map.hpp"
 #include "photon_splats.hpp"
 #include "schedule.hpp"
+#include "sharpness.hpp"
 
 namespace nimbus::caustics {
 
@@ -96,6 +97,17 @@ struct LensLink {
   bool same_side;  // the lens sees the side the vertex's light arrived on (a merge there finds it)
 };
 
+// A vertex of a path from a light, photon or light path alike: the hit and what the light side's MIS
+// and the next bounce read of it.
+struct LightSideVertex {
+  nimbus_interaction_t ix;
+  Vec3f wo, ng;    // towards where the path came from; the geometric normal
+  float c_in = 0;  // |cos| of the arrival at ng
+  nimbus_lobe_t lobes = 0;
+  bool rough = false;        // not sharp (sharpness.hpp): photons are stored and light paths connect here
+  bool smooth_only = false;  // no diffuse or glossy lobe: NEE and connections see nothing here
+};
+
 // Traces photon paths against the scene, reading only state that is fixed during a photon pass.
 class PhotonTracer {
  public:
@@ -152,6 +164,36 @@ class PhotonTracer {
                             const float lens_u[2], const LightTracing &in, LightTally &out) const;
   Mis first_vertex_nee(const nimbus_interaction_t &ix, uint32_t light, const Emitter &em,
                        const nimbus_light_emission_t &es, const Vec3f &wo, float lp, float c_in) const;
+  // The bounce loop's two halves, shared by photon paths and light paths. arrive: follows `ray` at
+  // `time` to its hit, counting ray_work; false when it leaves the scene or only grazes a surface.
+  bool arrive(const nimbus_thread_ctx_t &ctx, const nimbus_ray_t &ray, float time, PhotonMis &mis,
+              LightSideVertex &v, uint64_t &work, uint64_t ray_work) const;
+  // scatter: samples the BSDF at v with u (importance transport), carries the MIS state and beta over
+  // the bounce, plays Russian roulette on its throughput with the number next() (drawn only when the
+  // bounce can survive) and spawns the next ray; false when the path ends. stored, nee_term,
+  // importance: PhotonMis::scatter's.
+  template <class Next>
+  bool scatter(const LightSideVertex &v, const sdk::PathSpectrum &spectrum, const float u[3], Next &&next,
+               bool stored, Mis nee_term, float importance, PhotonMis &mis, Rgb &beta,
+               nimbus_ray_t &ray) const {
+    float wo_arr[3];
+    v.wo.store(wo_arr);
+    nimbus_bsdf_sample_t bs;
+    spectrum.sample(&v.ix, wo_arr, u, NIMBUS_MODE_IMPORTANCE, &bs);
+    if (!(bs.pdf > 0)) return false;
+    const Vec3f wi = Vec3f::load(bs.wi);
+    const bool delta = has(bs.lobe, NIMBUS_LOBE_SPECULAR);
+    mis.scatter(std::abs(dot(v.ng, wi)), bs.pdf, bs.pdf_rev, v.rough, stored, delta ? 0.0 : nee_term,
+                importance);
+    const Rgb t = Rgb::load(bs.f) * (std::abs(dot(wi, Vec3f::load(v.ix.ns))) / bs.pdf);
+    // Russian roulette on this bounce's throughput: the path's power stays roughly constant.
+    const float q = std::min(1.0f, max_component(t));
+    if (!(q > 0) || next() >= q) return false;
+    beta *= t / q;
+    if (is_black(beta) || !is_finite(beta)) return false;
+    svc_.scene->spawn_ray(h_, &v.ix, bs.wi, kInfinity, &ray);
+    return true;
+  }
 
   const nimbus_host_t *h_;
   const sdk::PathServices &svc_;
