@@ -11,8 +11,15 @@ using namespace abi_bsdf;
 
 void eval(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float wo[3], const float wi[3],
           nimbus_transport_mode_t mode, float f[3], float *pdf_fwd, float *pdf_rev) {
-  const Local l(host, ix);
   const Vec3f wow = Vec3f::load(wo), wiw = Vec3f::load(wi);
+  if (const DiffuseBsdf *d = plain_diffuse(host, ix)) {  // the commonest case, without a frame
+    const Vec3f ns = Vec3f::load(ix->ns);
+    Rgb v = d->eval({0, 0, dot(wow, ns)}, {0, 0, dot(wiw, ns)}, mode_of(mode), pdf_fwd, pdf_rev);
+    if (mode == NIMBUS_MODE_IMPORTANCE) v *= adjoint_factor(ix, ns, wow, wiw);
+    v.store(f);
+    return;
+  }
+  const Local l(host, ix);
   Rgb v = l.bsdf().eval(l.frame().to_local(wow), l.frame().to_local(wiw), mode_of(mode), pdf_fwd, pdf_rev);
   if (l.needs_factor(mode)) v *= l.factor(ix, mode, wow, wiw);
   v.store(f);
@@ -37,6 +44,10 @@ void sample(const nimbus_host_t *host, const nimbus_interaction_t *ix, const flo
 
 float pdf(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float wo[3], const float wi[3],
           nimbus_transport_mode_t mode) {
+  if (const DiffuseBsdf *d = plain_diffuse(host, ix)) {
+    const Vec3f ns = Vec3f::load(ix->ns);
+    return d->pdf({0, 0, dot(Vec3f::load(wo), ns)}, {0, 0, dot(Vec3f::load(wi), ns)}, mode_of(mode));
+  }
   const Local l(host, ix);
   return l.bsdf().pdf(l.frame().to_local(Vec3f::load(wo)), l.frame().to_local(Vec3f::load(wi)),
                       mode_of(mode));

@@ -14,6 +14,25 @@ inline TexturedMaterials::SurfacePoint surface_point(const nimbus_interaction_t 
           Vec2f{ix->uv[0], ix->uv[1]}};
 }
 
+// The adjoint BSDF's shading-normal factor |wo.ns||wi.ng| / (|wo.ng||wi.ns|) for importance transport
+// with shading normal ns (wo: where the particle came from).
+inline float adjoint_factor(const nimbus_interaction_t *ix, const Vec3f &ns, const Vec3f &wo,
+                            const Vec3f &wi) {
+  const Vec3f ng = Vec3f::load(ix->ng);
+  const float den = std::abs(dot(wo, ng)) * std::abs(dot(wi, ns));
+  return den > 0 ? std::abs(dot(wo, ns)) * std::abs(dot(wi, ng)) / den : 0.0f;
+}
+
+// The diffuse BSDF of an untextured material at ix, or null. Its value and densities read only the two
+// directions' cosines to the shading normal, which are their local z components bit for bit
+// (Frame::to_local): evaluating it needs no shading frame.
+inline const DiffuseBsdf *plain_diffuse(const nimbus_host_t *host, const nimbus_interaction_t *ix) {
+  const World &world = world_of(host);
+  const TexturedMaterials *textured = world.textures.get();
+  if (textured && textured->textured(ix->material)) return nullptr;
+  return world.bsdfs[ix->material].diffuse();
+}
+
 // The BSDF and shading frame at an interaction. Untextured materials use the BSDF built with the scene (no
 // lookups, no copies); textured ones get theirs built here from texture lookups at ix->uv, and a normal map
 // replaces the shading normal.
@@ -44,12 +63,7 @@ class Local {
   // the mapped normal n'; f carries |wi.n'| / |wi.ns| so that the product is f |wi.n'|.
   float factor(const nimbus_interaction_t *ix, nimbus_transport_mode_t mode, const Vec3f &wo,
                const Vec3f &wi) const {
-    float k = 1;
-    if (mode == NIMBUS_MODE_IMPORTANCE) {
-      const Vec3f ng = Vec3f::load(ix->ng);
-      const float den = std::abs(dot(wo, ng)) * std::abs(dot(wi, ns_));
-      k = den > 0 ? std::abs(dot(wo, ns_)) * std::abs(dot(wi, ng)) / den : 0.0f;
-    }
+    float k = mode == NIMBUS_MODE_IMPORTANCE ? adjoint_factor(ix, ns_, wo, wi) : 1.0f;
     if (mapped_) {
       const float den = std::abs(dot(wi, Vec3f::load(ix->ns)));
       k *= den > 0 ? std::abs(dot(wi, ns_)) / den : 0.0f;

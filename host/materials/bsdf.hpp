@@ -50,6 +50,8 @@ class Bsdf {
   }
   // The dielectric this BSDF is, or null: paths that carry a wavelength rebuild it with their index.
   const DielectricBsdf *dielectric() const { return std::get_if<DielectricBsdf>(&impl_); }
+  // The diffuse BSDF this is, or null (the BSDF service evaluates it without a shading frame).
+  const DiffuseBsdf *diffuse() const { return std::get_if<DiffuseBsdf>(&impl_); }
 
  private:
   std::variant<DiffuseBsdf, ConductorBsdf, DielectricBsdf> impl_;
