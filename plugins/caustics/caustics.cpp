@@ -186,7 +186,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
               CausticsRecord &rec) {
     if (map_active_) {
       MergingPath path(merge_, lookup_radii_[ctx], tallies_[ctx], guide_ ? &marks_[ctx] : nullptr,
-                       importance_, mix64(rng.state ^ rng.inc), pixel_radius_, size_t(y) * width_ + x, rec);
+                       importance_, mix64(rng.state ^ rng.inc), pixel_radius_, size_t(y) * width_ + x);
       trace(ctx, x, y, rng, rec, path);
     } else if (classify_) {
       ClassifyingPath path(emitters_, services().bsdf, host().get());

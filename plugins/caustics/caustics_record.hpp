@@ -24,24 +24,22 @@ struct CausticsRecord : sdk::SampleRecord {
   // (useful_pixels.hpp).
   float merge_split = 0;
   // The sample's light as the same path would have brought it without light paths (light_path_trial.hpp):
-  // each contribution times its MIS weight without them over its weight with them. next_ratio is that
-  // ratio for the next add(), which the path's weight (MergingPath) sets just before it.
+  // each contribution times its MIS weight without them over its weight with them (the camera-path
+  // layer's contributions carry that ratio as PathWeight::alt_ratio).
   Rgb without_light_paths;
-  float next_ratio = 1;
 
   void reset() {
     SampleRecord::reset();
     merge = without_light_paths = Rgb(0);
     lookup_moment = {};
     merge_split = 0;
-    next_ratio = 1;
   }
 
   // The camera-path layer's contributions (hides SampleRecord::add, which the layer calls on this type).
-  void add(const Rgb &c, uint32_t group, uint32_t segments, const ElementIds &ids, bool divert = false) {
+  void add(const Rgb &c, uint32_t group, uint32_t segments, const ElementIds &ids, bool divert = false,
+           float alt_ratio = 1) {
     SampleRecord::add(c, group, segments, ids, divert);
-    without_light_paths += c * next_ratio;
-    next_ratio = 1;
+    without_light_paths += c * alt_ratio;
   }
 
   // A photon-map merge contribution: always caustic light. without: the same without light paths.

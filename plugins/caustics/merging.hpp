@@ -181,12 +181,10 @@ class MergingPath {
   // when no guide is bound).
   // key: the camera sample's own hash, from which the lookup roulette draws (not from the camera path's
   // random numbers, which stay those of nimbus.pt). pixel: the sample's pixel in pixel_radius.
-  // rec: the sample's record, whose next_ratio each weight sets (light_path_trial.hpp).
   MergingPath(const MergeContext &mc, RadiusHistogram &lookup_radii, CameraTally &tally,
               ImportanceMarks *marks, const ImportanceMap &importance, uint64_t key,
-              PixelRadius &pixel_radius, size_t pixel, CausticsRecord &rec)
-      : rec_(&rec),
-        mc_(mc),
+              PixelRadius &pixel_radius, size_t pixel)
+      : mc_(mc),
         radii_(lookup_radii),
         tally_(tally),
         marks_(marks),
@@ -217,9 +215,9 @@ class MergingPath {
       if (lp_lt > 0) lt = mis_.lt_times(mis(Mis(lp_lt)), false);
     }
     const float w = hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped, lt);
-    if (lt > 0)
-      rec_->next_ratio = ratio_without(w, hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped));
-    return {w, lp > 0 && mis_.eligible(h.segments)};
+    const float without =
+        lt > 0 ? ratio_without(w, hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped)) : 1.0f;
+    return {w, lp > 0 && mis_.eligible(h.segments), without};
   }
 
   void vertex(const sdk::PathVertex &v, CausticsRecord &rec) {
@@ -283,10 +281,11 @@ class MergingPath {
     }
     const float w =
         nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk, mis_.clamped, lt);
-    if (lt > 0)
-      rec_->next_ratio = ratio_without(
-          w, nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments), lp, cos_j / d2, nk, mis_.clamped));
-    return {w, lp > 0 && mis_.eligible(s.segments)};
+    const float without = lt > 0
+                              ? ratio_without(w, nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments),
+                                                            lp, cos_j / d2, nk, mis_.clamped))
+                              : 1.0f;
+    return {w, lp > 0 && mis_.eligible(s.segments), without};
   }
 
   void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
@@ -300,7 +299,6 @@ class MergingPath {
   // A contribution's weight without light paths over its weight with them (1 where that is undefined).
   static float ratio_without(float with, float without) { return with > 0 ? without / with : 1.0f; }
 
-  CausticsRecord *rec_;
   const MergeContext &mc_;
   RadiusHistogram &radii_;  // this worker's lookup radii
   CameraTally &tally_;

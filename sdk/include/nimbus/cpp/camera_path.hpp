@@ -31,11 +31,14 @@
 
 namespace nimbus::sdk {
 
-// What an extension's weight hooks return: the MIS weight of a contribution, and whether the
-// integrator's own element takes it (SampleRecord::add's `divert`).
+// What an extension's weight hooks return: the MIS weight of a contribution, whether the integrator's
+// own element takes it (SampleRecord::add's `divert`), and the contribution's weight under a second
+// combination of techniques as a ratio to w, for a record that measures one against the other
+// (SampleRecord::add's `alt_ratio`; the caustics solver's light-path trial).
 struct PathWeight {
   float w = 1;
   bool divert = false;
+  float alt_ratio = 1;
 };
 
 // Light a BSDF-sampled ray found: an emitter it hit, or an infinite light it escaped to.
@@ -229,7 +232,7 @@ class CameraPathIntegrator : public Integrator {
             lh.light_pdf = selection_.pmf(&prev, ix.light_id) *
                            svc_.lights->pdf_incident(h, ix.light_id, &prev, ray.dir, &ix);
           const PathWeight w = path.hit(lh);
-          rec.add(beta * Le * w.w, light_group_[ix.light_id], segments, ids(), w.divert);
+          rec.add(beta * Le * w.w, light_group_[ix.light_id], segments, ids(), w.divert, w.alt_ratio);
         }
       }
 
@@ -290,7 +293,7 @@ class CameraPathIntegrator : public Integrator {
       if (!specular)
         lh.light_pdf = selection_.pmf(&prev, l) * svc_.lights->pdf_incident(h, l, &prev, d, nullptr);
       const PathWeight w = path.hit(lh);
-      rec.add(beta * Le * w.w, light_group_[l], segments, ids(), w.divert);
+      rec.add(beta * Le * w.w, light_group_[l], segments, ids(), w.divert, w.alt_ratio);
     }
   }
 
@@ -342,7 +345,8 @@ class CameraPathIntegrator : public Integrator {
     const float light_pdf = pmf * ls.pdf;
     const PathWeight w = path.nee(
         LightSample{light, &ix, &ls, wi, pmf, light_pdf, bsdf_pdf, bsdf_pdf_rev, delta, segments, time});
-    rec.add(beta * contrib * Li * (w.w / light_pdf), light_group_[light], segments, ids(), w.divert);
+    rec.add(beta * contrib * Li * (w.w / light_pdf), light_group_[light], segments, ids(), w.divert,
+            w.alt_ratio);
   }
 
  protected:

@@ -40,8 +40,10 @@ struct SampleRecord {
 
   // Light `c` from light `group`, reaching the camera over a path of `segments` segments (1: the light
   // was seen directly; 2: it lit the first surface directly). `divert`: the integrator's own element
-  // takes it instead of the split by path length.
-  void add(const Rgb &c, uint32_t group, uint32_t segments, const ElementIds &ids, bool divert = false) {
+  // takes it instead of the split by path length. alt_ratio (PathWeight's): read by records that
+  // measure a second weighting, ignored here.
+  void add(const Rgb &c, uint32_t group, uint32_t segments, const ElementIds &ids, bool divert = false,
+           float /*alt_ratio*/ = 1) {
     beauty += c;
     if (ids.split_light) {
       if (divert)
