@@ -29,7 +29,10 @@ void sample(const nimbus_host_t *host, const nimbus_interaction_t *ix, const flo
             nimbus_transport_mode_t mode, nimbus_bsdf_sample_t *out) {
   const Local l(host, ix);
   const Vec3f wow = Vec3f::load(wo);
-  const BsdfSample s = l.bsdf().sample(l.frame().to_local(wow), u[0], {u[1], u[2]}, mode_of(mode));
+  // A diffuse BSDF reads only wo's cosine: its z in the frame (plain_diffuse), without the other two.
+  const DiffuseBsdf *d = l.bsdf().diffuse();
+  const BsdfSample s = d ? d->sample({0, 0, dot(wow, l.frame().n)}, u[0], {u[1], u[2]}, mode_of(mode))
+                         : l.bsdf().sample(l.frame().to_local(wow), u[0], {u[1], u[2]}, mode_of(mode));
   const Vec3f wiw = l.frame().to_world(s.wi);
   Rgb f = s.f;
   if (l.needs_factor(mode) && s.pdf > 0) f *= l.factor(ix, mode, wow, wiw);
