@@ -34,6 +34,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -52,6 +53,12 @@ using Mis = double;
 // The MIS exponent beta = 2 applied to one factor.
 inline float mis(float x) { return x * x; }
 inline Mis mis(Mis x) { return x * x; }
+// x * 2^n, rounded as std::ldexp rounds it (the product with a power of two is rounded once), without
+// its library call in the paths' inner loops; n beyond the normal exponents goes to std::ldexp.
+inline Mis times_pow2(Mis x, int n) {
+  if (n < -1022 || n > 1023) return std::ldexp(x, n);
+  return x * std::bit_cast<Mis>(uint64_t(n + 1023) << 52);
+}
 // The values are renormalised when the largest leaves [2^-kMisRescale, 2^kMisRescale].
 inline constexpr int kMisRescale = 400;
 // Moves the power of two of the largest of `values` (if out of range) into exp2; values 2^800 below
@@ -61,10 +68,10 @@ inline void renormalise(uint32_t n, Get &&value, int &exp2) {
   Mis largest = 0;
   for (uint32_t i = 0; i < n; ++i) largest = std::max(largest, value(i));
   if (!(largest > 0) || !std::isfinite(largest) ||
-      (largest < std::ldexp(1.0, kMisRescale) && largest > std::ldexp(1.0, -kMisRescale)))
+      (largest < times_pow2(1.0, kMisRescale) && largest > times_pow2(1.0, -kMisRescale)))
     return;
   const int e = std::ilogb(largest);
-  for (uint32_t i = 0; i < n; ++i) value(i) = std::ldexp(value(i), -e);
+  for (uint32_t i = 0; i < n; ++i) value(i) = times_pow2(value(i), -e);
   exp2 += e;
 }
 // log2 of x * 2^exp2, as a photon stores A and B (-inf for 0).
@@ -77,7 +84,7 @@ struct MisSum {
   Mis sum = 0;
   int exp2 = 0;
   Mis times(Mis factor, bool &clamped) const {
-    const Mis v = std::ldexp(sum * factor, exp2);
+    const Mis v = times_pow2(sum * factor, exp2);
     if (!(v <= std::numeric_limits<Mis>::max())) clamped = true;
     return v;
   }
@@ -124,12 +131,12 @@ struct PhotonMis {
   // there is a technique for every longer path through it). importance: I at the stored vertex.
   void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, Mis E, float importance = 0) {
     const Mis g = mis(Mis(c_out) / w_fwd), r = mis(Mis(w_rev));
-    A = g * (r * A + std::ldexp(E, -exp2));
+    A = g * (r * A + times_pow2(E, -exp2));
     if (rough) {
-      B = g * (r * B + (stored ? std::ldexp(1.0, -exp2) : 0.0));
+      B = g * (r * B + (stored ? times_pow2(1.0, -exp2) : 0.0));
       const Mis I = stored ? Mis(importance) : 0.0;
-      B_importance = g * (r * B_importance + std::ldexp(I, -exp2));
-      B_importance2 = g * (r * B_importance2 + std::ldexp(I * I, -exp2));
+      B_importance = g * (r * B_importance + times_pow2(I, -exp2));
+      B_importance2 = g * (r * B_importance2 + times_pow2(I * I, -exp2));
       b_valid = b_valid || stored;
     } else {
       B = g * r * B;
@@ -234,8 +241,8 @@ struct CameraMis {
     n_terms = n;
     if (lookup && n_terms < kMaxCameraTerms)
       terms[n_terms++] =
-          CameraTerm{std::ldexp(g * (mis(eta) + mis(eta_splat)), -exp2), j, false, false, false};
-    lt = lt * g * r + (eta_lt > 0 ? std::ldexp(g * eta_lt, -exp2) : 0.0);
+          CameraTerm{times_pow2(g * (mis(eta) + mis(eta_splat)), -exp2), j, false, false, false};
+    lt = lt * g * r + (eta_lt > 0 ? times_pow2(g * eta_lt, -exp2) : 0.0);
     rescale();
   }
   void rescale() {
@@ -247,7 +254,7 @@ struct CameraMis {
   // scatter when the path ends there (first), else R.
   Mis lt_times(Mis factor, bool first) const {
     if (first) return lt_first * factor;
-    const Mis v = std::ldexp(lt * factor, exp2);
+    const Mis v = times_pow2(lt * factor, exp2);
     if (!(v <= std::numeric_limits<Mis>::max())) clamped = true;
     return v;
   }
