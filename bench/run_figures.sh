@@ -55,6 +55,11 @@ for spec in default:pt:all one-light:pt:all many-lights:pt:all caustics/diffuse-
   $PY bench/error_vs_time.py scenes/$path.yaml --integrators pt,caustics --times "$times" --seeds 3 \
     --reference-integrator "$ref" --reference-time "$REF_SECONDS" "${extra[@]}" --out docs/error-vs-time/$scene
 done
+# The moving box: the pixels its glass sphere sweeps are left out (the light tracer does not see the box
+# through it).
+$PY bench/error_vs_time.py scenes/caustics/cornell-moving.yaml --integrators pt,caustics --times "$TIMES" \
+  --seeds 3 --reference-integrator lt --reference-time "$REF_SECONDS" --covered-only \
+  --exclude-render bench/masks/cornell-moving-sphere.yaml --out docs/error-vs-time/cornell-moving
 fi
 if stage guiding; then
 # §8: the photon emission strategies at equal time (relMSE between independent renders: all are

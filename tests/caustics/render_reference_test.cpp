@@ -106,17 +106,16 @@ lights:
                             {{"photon_emission", "adaptive-map"}});
 }
 
-// scenes/caustics/cornell-point.yaml (a Cornell box under a point light with a glass and a mirror
-// sphere) at 64 x 64 and a maximum path length of 8, with the text replacements `edits`.
-std::string small_cornell_point(std::initializer_list<std::pair<std::string, std::string>> edits = {}) {
-  std::ifstream file(std::string(NIMBUS_SOURCE_DIR) + "/scenes/caustics/cornell-point.yaml");
+// The shipped scenes/caustics/NAME.yaml (a Cornell box under a point light with a glass and a mirror
+// sphere) at 64 x 64 and a maximum path length of 8.
+std::string small_box(const std::string &name) {
+  std::ifstream file(std::string(NIMBUS_SOURCE_DIR) + "/scenes/caustics/" + name + ".yaml");
   std::string scene((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  std::vector<std::pair<std::string, std::string>> all = {{"resolution: [512, 512]", "resolution: [64, 64]"},
-                                                          {"max_depth: 12", "max_depth: 8"}};
-  all.insert(all.end(), edits.begin(), edits.end());
-  for (const auto &[from, to] : all) {
+  for (const auto &[from, to] :
+       {std::pair<std::string, std::string>{"resolution: [512, 512]", "resolution: [64, 64]"},
+        {"max_depth: 12", "max_depth: 8"}}) {
     const size_t at = scene.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
+    EXPECT_NE(at, std::string::npos) << name << ": " << from;
     if (at != std::string::npos) scene.replace(at, from.size(), to);
   }
   return scene;
@@ -161,20 +160,16 @@ void expect_light_paths_converge(const std::string &scene) {
 // Measured 0.67, 0.14 and 0.74 standard errors apart. Light paths without their MIS weights would
 // double the floor's indirect light; without light paths the trial's statistic fails.
 TEST(CausticsRender, LightPathsInAClosedBoxConvergeToLightTracer) {
-  expect_light_paths_converge(small_cornell_point());
+  expect_light_paths_converge(small_box("cornell-point"));
 }
 
-// The same box with motion blur: the glass sphere moves 30 cm while the shutter is open, so its shadow
-// and caustic sweep the floor. Light paths, photons and camera paths each draw their own time; the
-// merges take photons of a window of times around the camera path's, and light paths and splats none
-// (light_paths.hpp), which the MIS weights count. Measured 1.18, 0.58 and 0.45 standard errors apart;
-// light paths traced at the shutter's opening put the side wall 7.4 apart.
+// The same box with motion blur (scenes/caustics/cornell-moving.yaml): the glass sphere moves 30 cm while
+// the shutter is open, so its shadow and caustic sweep the floor. Light paths, photons and camera paths
+// each draw their own time; the merges take photons of a window of times around the camera path's, and
+// light paths and splats none (light_paths.hpp), which the MIS weights count. Measured 1.18, 0.58 and
+// 0.45 standard errors apart; light paths traced at the shutter's opening put the side wall 7.4 apart.
 TEST(CausticsRender, LightPathsInAMovingClosedBoxConvergeToLightTracer) {
-  expect_light_paths_converge(small_cornell_point(
-      {{"fov: 39", "fov: 39\n  shutter: { open: 0, close: 0.04 }"},
-       {"radius: 0.33, material: glass }",
-        "radius: 0.33, material: glass,\n"
-        "      motion: [{ time: 0, translate: [0, 0, 0] }, { time: 0.04, translate: [-0.3, 0, 0] }] }"}}));
+  expect_light_paths_converge(small_box("cornell-moving"));
 }
 
 // The focus of a point light behind a glass sphere (320 x 180, the caustic's core a few pixels wide): a
