@@ -14,7 +14,7 @@ void eval(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float
   const Vec3f wow = Vec3f::load(wo), wiw = Vec3f::load(wi);
   if (const DiffuseBsdf *d = plain_diffuse(host, ix)) {  // the commonest case, without a frame
     const Vec3f ns = Vec3f::load(ix->ns);
-    Rgb v = d->eval({0, 0, dot(wow, ns)}, {0, 0, dot(wiw, ns)}, mode_of(mode), pdf_fwd, pdf_rev);
+    Rgb v = d->eval(cosine_only(wow, ns), cosine_only(wiw, ns), mode_of(mode), pdf_fwd, pdf_rev);
     if (mode == NIMBUS_MODE_IMPORTANCE) v *= adjoint_factor(ix, ns, wow, wiw);
     v.store(f);
     return;
@@ -29,9 +29,9 @@ void sample(const nimbus_host_t *host, const nimbus_interaction_t *ix, const flo
             nimbus_transport_mode_t mode, nimbus_bsdf_sample_t *out) {
   const Local l(host, ix);
   const Vec3f wow = Vec3f::load(wo);
-  // A diffuse BSDF reads only wo's cosine: its z in the frame (plain_diffuse), without the other two.
+  // A diffuse BSDF reads only wo's cosine (plain_diffuse).
   const DiffuseBsdf *d = l.bsdf().diffuse();
-  const BsdfSample s = d ? d->sample({0, 0, dot(wow, l.frame().n)}, u[0], {u[1], u[2]}, mode_of(mode))
+  const BsdfSample s = d ? d->sample(cosine_only(wow, l.frame().n), u[0], {u[1], u[2]}, mode_of(mode))
                          : l.bsdf().sample(l.frame().to_local(wow), u[0], {u[1], u[2]}, mode_of(mode));
   const Vec3f wiw = l.frame().to_world(s.wi);
   Rgb f = s.f;
@@ -49,7 +49,7 @@ float pdf(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float
           nimbus_transport_mode_t mode) {
   if (const DiffuseBsdf *d = plain_diffuse(host, ix)) {
     const Vec3f ns = Vec3f::load(ix->ns);
-    return d->pdf({0, 0, dot(Vec3f::load(wo), ns)}, {0, 0, dot(Vec3f::load(wi), ns)}, mode_of(mode));
+    return d->pdf(cosine_only(Vec3f::load(wo), ns), cosine_only(Vec3f::load(wi), ns), mode_of(mode));
   }
   const Local l(host, ix);
   return l.bsdf().pdf(l.frame().to_local(Vec3f::load(wo)), l.frame().to_local(Vec3f::load(wi)),

@@ -23,15 +23,23 @@ inline float adjoint_factor(const nimbus_interaction_t *ix, const Vec3f &ns, con
   return den > 0 ? std::abs(dot(wo, ns)) * std::abs(dot(wi, ng)) / den : 0.0f;
 }
 
-// The diffuse BSDF of an untextured material at ix, or null. Its value and densities read only the two
-// directions' cosines to the shading normal, which are their local z components bit for bit
-// (Frame::to_local): evaluating it needs no shading frame.
-inline const DiffuseBsdf *plain_diffuse(const nimbus_host_t *host, const nimbus_interaction_t *ix) {
+// The BSDF built with the scene for ix's material, or null when textures make it vary over the surface.
+inline const Bsdf *untextured_bsdf(const nimbus_host_t *host, const nimbus_interaction_t *ix) {
   const World &world = world_of(host);
   const TexturedMaterials *textured = world.textures.get();
-  if (textured && textured->textured(ix->material)) return nullptr;
-  return world.bsdfs[ix->material].diffuse();
+  return textured && textured->textured(ix->material) ? nullptr : &world.bsdfs[ix->material];
 }
+
+// The diffuse BSDF of an untextured material at ix, or null. Its value and densities read only the
+// directions' cosines to the shading normal (cosine_only): evaluating it needs no shading frame.
+inline const DiffuseBsdf *plain_diffuse(const nimbus_host_t *host, const nimbus_interaction_t *ix) {
+  const Bsdf *b = untextured_bsdf(host, ix);
+  return b ? b->diffuse() : nullptr;
+}
+
+// w in a shading frame with normal n as a BSDF that reads only cosines sees it: the z component is
+// Frame::to_local's bit for bit, the other two are left out.
+inline Vec3f cosine_only(const Vec3f &w, const Vec3f &n) { return {0, 0, dot(w, n)}; }
 
 // The BSDF and shading frame at an interaction. Untextured materials use the BSDF built with the scene (no
 // lookups, no copies); textured ones get theirs built here from texture lookups at ix->uv, and a normal map
@@ -39,12 +47,10 @@ inline const DiffuseBsdf *plain_diffuse(const nimbus_host_t *host, const nimbus_
 class Local {
  public:
   Local(const nimbus_host_t *host, const nimbus_interaction_t *ix) : ns_(Vec3f::load(ix->ns)) {
-    const World &world = world_of(host);
-    const TexturedMaterials *textured = world.textures.get();
-    if (!textured || !textured->textured(ix->material)) {
-      bsdf_ = &world.bsdfs[ix->material];
-    } else {
-      const TexturedMaterials::Shading &s = own_.emplace(textured->shade(ix->material, surface_point(ix)));
+    bsdf_ = untextured_bsdf(host, ix);
+    if (!bsdf_) {
+      const TexturedMaterials &textured = *world_of(host).textures;
+      const TexturedMaterials::Shading &s = own_.emplace(textured.shade(ix->material, surface_point(ix)));
       bsdf_ = &s.bsdf;
       ns_ = s.ns;
       mapped_ = s.normal_mapped;

@@ -57,7 +57,7 @@ void PhotonTracer::trace_light(const nimbus_thread_ctx_t &ctx, uint64_t path, co
   // A scene time when something moves, drawn from the shutter's curve as photons and camera paths draw
   // theirs (photon_windows.hpp): the path's merges would take photons of a window around it.
   const float time_u = scene_.timed ? next_uniform(rng) : 0.0f;
-  const float time = scene_.timed ? svc_.camera->sample_time(h, time_u, nullptr) : 0.0f;
+  const float time = scene_.time(h, time_u);
   const float ue[4] = {next_uniform(rng), next_uniform(rng), next_uniform(rng), next_uniform(rng)};
   nimbus_light_emission_t es;
   scene_.sample_emission(h, light, ue, time, es);

@@ -62,7 +62,7 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
   // A scene time from the shutter's curve when something moves (photon_windows.hpp): lookups compare its
   // number u, in which photons and camera paths are both uniform.
   const float time_u = scene_.timed ? samples.time_number() : 0.0f;
-  const float time = scene_.timed ? svc_.camera->sample_time(h, time_u, nullptr) : 0.0f;
+  const float time = scene_.time(h, time_u);
   nimbus_light_emission_t es;
   scene_.sample_emission(h, light, ue, time, es);
   if (!(es.pdf_pos > 0) || !(es.pdf_dir > 0)) return target;

@@ -125,7 +125,7 @@ class LightTracer final : public sdk::Integrator {
     const float ue[4] = {next(rng), next(rng), next(rng), next(rng)};
     // A time from the shutter's curve when something moves (the film integrates over it: weight 1);
     // no number is drawn otherwise, so a static scene's paths are unchanged.
-    const float time = timed_.timed ? camera_->sample_time(h, next(rng), nullptr) : 0.0f;
+    const float time = timed_.time(h, timed_.timed ? next(rng) : 0.0f);
     nimbus_light_emission_t em;
     timed_.sample_emission(h, light, ue, time, em);
     if (!(em.pdf_pos > 0) || !(em.pdf_dir > 0)) return;

@@ -190,7 +190,7 @@ class CameraPathIntegrator : public Integrator {
     const float filter_weight = svc_.camera->sample_film(h, x, y, uf, cs.film);
     // Drawn from the shutter's curve, which the film integrates over: the weight stays 1.
     const float time_u = scene_.timed ? next_uniform(rng) : 0.0f;
-    const float time = scene_.timed ? svc_.camera->sample_time(h, time_u, nullptr) : 0.0f;
+    const float time = scene_.time(h, time_u);
     nimbus_ray_t ray;
     const float cam_weight = scene_.generate_ray(h, cs, time, ray) * filter_weight;
     if (cam_weight == 0) return;

@@ -88,6 +88,11 @@ struct TimedScene {
     else
       scene->interaction(h, &ray, &hit, &ix);
   }
+  // [any-thread] The scene time that u in [0, 1) maps to on the shutter's curve, whose density the film
+  // integrates over (a path drawn so keeps weight 1); 0 when nothing moves.
+  float time(const nimbus_host_t *h, float u) const {
+    return timed ? camera->sample_time(h, u, nullptr) : 0.0f;
+  }
   // [any-thread] The camera's generate_ray and connect at `time`.
   float generate_ray(const nimbus_host_t *h, const nimbus_camera_sample_t &cs, float time,
                      nimbus_ray_t &ray) const {
