@@ -165,7 +165,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
       stats_.pass_done(result, pass_.map(),
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       stats_.splats += pass_.splats().size();
-      useful_.map_changed(!result.guided);  // a guided map's halves are dependent
+      useful_.map_changed(!result.guided, sdk::host_parallel_for(tasks_, host().get()));
       schedule_.pass_done(iteration, result.traced, pass_.map().size());
     }
     map_active_ = schedule_.map_active();
@@ -218,7 +218,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     for (uint64_t &p : region_pixels_) pixels += p, p = 0;
     schedule_.set_camera_paths(pixels);
     const uint64_t light_path_work = lens_.iteration_done(pixels);
-    const UsefulPixels::Summary summary = useful_.summarize(pixels, double(schedule_.iterations_per_map()));
+    const UsefulPixels::Summary summary = useful_.summarize(pixels, schedule_.iterations_per_map(),
+                                                            sdk::host_parallel_for(tasks_, host().get()));
     if (map_active_) {
       // Light paths are camera-pass work.
       const CameraTally sum = sum_tallies(tallies_, [&](const CameraTally &t) { stats_.camera_done(t); });

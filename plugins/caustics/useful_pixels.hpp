@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <nimbus/cpp/math.hpp>
+#include <nimbus/cpp/tasks.hpp>
 
 #include "lookup_roulette.hpp"
 #include "schedule.hpp"
@@ -92,66 +93,94 @@ class UsefulPixels {
   // [main-thread] A new photon map replaces the current one: each pixel's merge mean under the old map
   // is compared with the one before it. halves_independent: the new map's paths are independent (an
   // unguided pass), so its halves measure its photon noise.
-  void map_changed(bool halves_independent = false) {
+  void map_changed(bool halves_independent = false, const sdk::ParallelFor &parallel = sdk::serial_for) {
     halves_independent_ = halves_independent;
-    for (Sums &s : sums_) {
-      if (!(s.map_n > 1)) {
+    sdk::parallel_ranges(parallel, sums_.size(), kChunk, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        Sums &s = sums_[i];
+        if (!(s.map_n > 1)) {
+          s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0, s.map_split = 0;
+          continue;
+        }
+        const float mean = s.map_merge / s.map_n;
+        const float within = std::max(0.0f, (s.map_merge2 - s.map_merge * mean) / (s.map_n - 1));
+        if (s.has_previous) {
+          // Var(mean) = V_photon + V_within / n: the photon part is what is left.
+          const float d = std::max(0.0f, 0.5f * (mean - s.previous) * (mean - s.previous) - within / s.map_n);
+          s.between = s.has_between ? kWindowDecay * s.between + (1 - kWindowDecay) * d : d;
+          s.within = s.has_between ? kWindowDecay * s.within + (1 - kWindowDecay) * within : within;
+          s.has_between = 1;
+        }
+        s.previous = mean, s.has_previous = 1;
         s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0, s.map_split = 0;
-        continue;
       }
-      const float mean = s.map_merge / s.map_n;
-      const float within = std::max(0.0f, (s.map_merge2 - s.map_merge * mean) / (s.map_n - 1));
-      if (s.has_previous) {
-        // Var(mean) = V_photon + V_within / n: the photon part is what is left.
-        const float d = std::max(0.0f, 0.5f * (mean - s.previous) * (mean - s.previous) - within / s.map_n);
-        s.between = s.has_between ? kWindowDecay * s.between + (1 - kWindowDecay) * d : d;
-        s.within = s.has_between ? kWindowDecay * s.within + (1 - kWindowDecay) * within : within;
-        s.has_between = 1;
-      }
-      s.previous = mean, s.has_previous = 1;
-      s.map_n = 0, s.map_merge = 0, s.map_merge2 = 0, s.map_split = 0;
-    }
+    });
   }
 
   // [main-thread] The summary over the `pixels` rendered pixels (pixels outside the render region have
   // no samples and never count), for maps that each serve `iterations_per_map` iterations; then the
-  // window moves on.
-  Summary summarize(uint64_t pixels, double iterations_per_map) {
-    Summary out;
-    uint64_t useful = 0;
-    double samples = 0;  // the window's (decayed) sample counts
-    for (Sums &s : sums_) {
-      if (s.n > 0) {
-        samples += s.n;
-        useful += s.merge > float(kIdleThreshold) * s.total ? 1 : 0;
-        const double n = s.n, mean_t = s.total / n, mean_c = mean_t - s.merge / n;
-        const double weight = 1 / (mean_t * mean_t + kRelativeOffset);
-        // A map's photon noise is shared by the k iterations it serves: k times that of one iteration's
-        // own map. The merges' camera-side variance counts with the rest (camera samples reduce it).
-        if (s.has_between) {
-          out.v_merge += double(s.between) * iterations_per_map * weight;
-        } else if (halves_independent_ && s.map_n > 0) {
-          const double half_difference = s.map_split / s.map_n;
-          out.v_merge += half_difference * half_difference * iterations_per_map * weight;
-        }
-        out.v_camera += (std::max(0.0, s.camera2 / n - mean_c * mean_c) + double(s.within)) * weight;
-        for (uint32_t k = 0; k < kLookupClasses; ++k) out.second_moment[k] += s.moment[k] / n * weight;
-      }
-      s.n *= kWindowDecay, s.total *= kWindowDecay, s.merge *= kWindowDecay, s.camera2 *= kWindowDecay;
-      for (float &m : s.moment) m *= kWindowDecay;
+  // window moves on. Chunks of pixels are summed concurrently and combined in their order, so the
+  // summary does not depend on the thread count.
+  Summary summarize(uint64_t pixels, double iterations_per_map,
+                    const sdk::ParallelFor &parallel = sdk::serial_for) {
+    const size_t chunks = (sums_.size() + kChunk - 1) / kChunk;
+    std::vector<Partial> parts(chunks);
+    sdk::parallel_ranges(parallel, sums_.size(), kChunk, [&](size_t begin, size_t end) {
+      parts[begin / kChunk] = summarize_range(begin, end, iterations_per_map);
+    });
+    Partial all;
+    for (const Partial &p : parts) {
+      all.useful += p.useful, all.samples += p.samples;
+      all.s.v_merge += p.s.v_merge, all.s.v_camera += p.s.v_camera;
+      for (uint32_t k = 0; k < kLookupClasses; ++k) all.s.second_moment[k] += p.s.second_moment[k];
     }
+    Summary out = all.s;
     if (pixels > 0) {
-      out.useful = std::min(1.0, double(useful) / double(pixels));
+      out.useful = std::min(1.0, double(all.useful) / double(pixels));
       out.v_merge /= double(pixels), out.v_camera /= double(pixels);
       for (double &m : out.second_moment) m /= double(pixels);
       // One sample has no spread: the merges' variance is unmeasured until the window holds two per
       // pixel (one of them decayed), which the split of a map's halves would otherwise price alone.
-      if (samples < 1.5 * double(pixels)) out.v_merge = 0;
+      if (all.samples < 1.5 * double(pixels)) out.v_merge = 0;
     }
     return out;
   }
 
  private:
+  static constexpr size_t kChunk = 16384;  // pixels per task of summarize
+  // One chunk's sums: the summary's before the division by the pixel count.
+  struct Partial {
+    Summary s;
+    uint64_t useful = 0;
+    double samples = 0;  // the window's (decayed) sample counts
+  };
+
+  Partial summarize_range(size_t begin, size_t end, double iterations_per_map) {
+    Partial out;
+    for (size_t i = begin; i < end; ++i) {
+      Sums &s = sums_[i];
+      if (s.n > 0) {
+        out.samples += s.n;
+        out.useful += s.merge > float(kIdleThreshold) * s.total ? 1 : 0;
+        const double n = s.n, mean_t = s.total / n, mean_c = mean_t - s.merge / n;
+        const double weight = 1 / (mean_t * mean_t + kRelativeOffset);
+        // A map's photon noise is shared by the k iterations it serves: k times that of one iteration's
+        // own map. The merges' camera-side variance counts with the rest (camera samples reduce it).
+        if (s.has_between) {
+          out.s.v_merge += double(s.between) * iterations_per_map * weight;
+        } else if (halves_independent_ && s.map_n > 0) {
+          const double half_difference = s.map_split / s.map_n;
+          out.s.v_merge += half_difference * half_difference * iterations_per_map * weight;
+        }
+        out.s.v_camera += (std::max(0.0, s.camera2 / n - mean_c * mean_c) + double(s.within)) * weight;
+        for (uint32_t k = 0; k < kLookupClasses; ++k) out.s.second_moment[k] += s.moment[k] / n * weight;
+      }
+      s.n *= kWindowDecay, s.total *= kWindowDecay, s.merge *= kWindowDecay, s.camera2 *= kWindowDecay;
+      for (float &m : s.moment) m *= kWindowDecay;
+    }
+    return out;
+  }
+
   // No padding bytes (the flags' are explicit), so that a saved state is the same bytes every time.
   struct Sums {
     float n = 0, total = 0, merge = 0, camera2 = 0;  // the window's samples

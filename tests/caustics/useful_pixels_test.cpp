@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include "state_bytes.hpp"
@@ -121,6 +123,37 @@ TEST(UsefulPixels, SplattedLightIsThePhotonsLight) {
   // The camera part (beauty minus photon light) is 1 in every sample: no camera variance; the pixel's
   // value, 4, weighs it.
   EXPECT_NEAR(with.v_camera, 0.0, 1e-12);
+}
+
+// The summary is summed in chunks of pixels that may run concurrently: the same bits from any runner,
+// whatever order its chunks finish in (here: every chunk on its own thread, reversed start order).
+TEST(UsefulPixels, TheSummaryDoesNotDependOnTheRunner) {
+  const sdk::ParallelFor threads = [](size_t count, const std::function<void(size_t)> &fn) {
+    std::vector<std::thread> pool;
+    for (size_t c = count; c-- > 0;) pool.emplace_back([&fn, c] { fn(c); });
+    for (std::thread &t : pool) t.join();
+  };
+  constexpr size_t kMany = 70000;  // several chunks, the last one partial
+  UsefulPixels serial, parallel;
+  serial.reset(kMany), parallel.reset(kMany);
+  serial.map_changed(true), parallel.map_changed(true, threads);
+  std::mt19937_64 rng(9);
+  std::normal_distribution<float> noise(0.0f, 0.4f);
+  for (int k = 0; k < 2 * kSamplesPerMap; ++k) {
+    if (k == kSamplesPerMap) serial.map_changed(true), parallel.map_changed(true, threads);
+    for (size_t i = 0; i < kMany; ++i) {
+      const float m = std::abs(1.0f + noise(rng)), rest = std::abs(noise(rng)), split = noise(rng);
+      const std::array<float, kLookupClasses> moment{m * m, rest};
+      serial.add(i, Rgb(m + rest), Rgb(m), moment, split),
+          parallel.add(i, Rgb(m + rest), Rgb(m), moment, split);
+    }
+    const UsefulPixels::Summary a = serial.summarize(kMany, 2.0), b = parallel.summarize(kMany, 2.0, threads);
+    EXPECT_EQ(a.useful, b.useful);
+    EXPECT_EQ(a.v_merge, b.v_merge);
+    EXPECT_EQ(a.v_camera, b.v_camera);
+    EXPECT_EQ(a.second_moment, b.second_moment);
+    EXPECT_GT(a.v_camera, 0.0);
+  }
 }
 
 }  // namespace useful_pixels_test
