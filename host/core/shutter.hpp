@@ -25,6 +25,8 @@ class Shutter {
     cdf_.assign(x_.size(), 0.0);
     for (size_t i = 1; i < x_.size(); ++i)
       cdf_[i] = cdf_[i - 1] + 0.5 * (double(y_[i - 1]) + y_[i]) * (double(x_[i]) - x_[i - 1]);
+    box_ = x_.size() == 2 && y_[0] == 1 && y_[1] == 1;
+    last_ = std::nextafter(close_, open_);
   }
 
   float open() const { return open_; }
@@ -35,6 +37,9 @@ class Shutter {
   // The time that u in [0, 1) maps to, distributed with density pdf().
   float sample(float u) const {
     if (instantaneous()) return open_;
+    // The box's segment fraction is u itself (the general solve below gives exactly that): every camera
+    // path of a moving scene draws its time here.
+    if (box_) return std::min(float(open_ + double(u) * (double(close_) - open_)), last_);
     const double target = double(u) * cdf_.back();
     size_t i = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin());
     i = std::clamp<size_t>(i, 1, x_.size() - 1);
@@ -44,7 +49,7 @@ class Shutter {
     const double root = std::sqrt(std::max(0.0, y0 * y0 + 2 * dy * c));
     const double s = y0 + root > 0 ? std::clamp(2 * c / (y0 + root), 0.0, 1.0) : 0.5;
     const double x = x_[i - 1] + s * w;
-    return std::min(float(open_ + x * (double(close_) - open_)), std::nextafter(close_, open_));
+    return std::min(float(open_ + x * (double(close_) - open_)), last_);
   }
   // The density g of sampled times per unit of scene time (0 outside [open, close]).
   float pdf(float t) const {
@@ -62,6 +67,8 @@ class Shutter {
   float open_ = 0, close_ = 0;
   std::vector<float> x_, y_;  // the curve's knots
   std::vector<double> cdf_;   // its integral at the knots
+  bool box_ = false;          // the curve is the box (0, 1), (1, 1)
+  float last_ = 0;            // the latest time drawn: the float before close
 };
 
 }  // namespace nimbus

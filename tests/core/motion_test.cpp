@@ -62,6 +62,22 @@ TEST(Shutter, SamplesTimesByItsCurve) {
   EXPECT_NEAR(ramps.pdf(1.5f), 1.0f / 0.8f, 1e-5f);
 }
 
+TEST(Shutter, TheBoxDrawsTheTimesOfTheGeneralCurveSolve) {
+  // The box takes a shortcut; the same box given with a middle knot takes the general solve, whose
+  // segment fractions are exact here (halving and doubling): the times must match bit for bit, up to
+  // the last float before the shutter closes.
+  const Shutter box(0.1f, 0.35f), knotted(0.1f, 0.35f, {{{0, 1}}, {{0.5f, 1}}, {{1, 1}}});
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int k = 0; k < 10000; ++k) {
+    const float v = u(rng);
+    ASSERT_EQ(box.sample(v), knotted.sample(v)) << "u = " << v;
+  }
+  const float last = std::nextafter(1.0f, 0.0f);
+  EXPECT_EQ(box.sample(last), knotted.sample(last));
+  EXPECT_LT(box.sample(last), 0.35f);
+}
+
 TEST(Shutter, InstantaneousSamplesNothing) {
   const Shutter still, at_two(2.0f, 2.0f);
   EXPECT_TRUE(still.instantaneous());
