@@ -129,12 +129,9 @@ class UsefulPixels {
       parts[begin / kChunk] = summarize_range(begin, end, iterations_per_map);
     });
     Partial all;
-    for (const Partial &p : parts) {
-      all.useful += p.useful, all.samples += p.samples;
-      all.s.v_merge += p.s.v_merge, all.s.v_camera += p.s.v_camera;
-      for (uint32_t k = 0; k < kLookupClasses; ++k) all.s.second_moment[k] += p.s.second_moment[k];
-    }
-    Summary out = all.s;
+    for (const Partial &p : parts) all += p;
+    Summary out;
+    out.v_merge = all.v_merge, out.v_camera = all.v_camera, out.second_moment = all.second_moment;
     if (pixels > 0) {
       out.useful = std::min(1.0, double(all.useful) / double(pixels));
       out.v_merge /= double(pixels), out.v_camera /= double(pixels);
@@ -150,9 +147,15 @@ class UsefulPixels {
   static constexpr size_t kChunk = 16384;  // pixels per task of summarize
   // One chunk's sums: the summary's before the division by the pixel count.
   struct Partial {
-    Summary s;
     uint64_t useful = 0;
     double samples = 0;  // the window's (decayed) sample counts
+    double v_merge = 0, v_camera = 0;
+    std::array<double, kLookupClasses> second_moment{};
+    Partial &operator+=(const Partial &o) {
+      useful += o.useful, samples += o.samples, v_merge += o.v_merge, v_camera += o.v_camera;
+      for (uint32_t k = 0; k < kLookupClasses; ++k) second_moment[k] += o.second_moment[k];
+      return *this;
+    }
   };
 
   Partial summarize_range(size_t begin, size_t end, double iterations_per_map) {
@@ -167,13 +170,13 @@ class UsefulPixels {
         // A map's photon noise is shared by the k iterations it serves: k times that of one iteration's
         // own map. The merges' camera-side variance counts with the rest (camera samples reduce it).
         if (s.has_between) {
-          out.s.v_merge += double(s.between) * iterations_per_map * weight;
+          out.v_merge += double(s.between) * iterations_per_map * weight;
         } else if (halves_independent_ && s.map_n > 0) {
           const double half_difference = s.map_split / s.map_n;
-          out.s.v_merge += half_difference * half_difference * iterations_per_map * weight;
+          out.v_merge += half_difference * half_difference * iterations_per_map * weight;
         }
-        out.s.v_camera += (std::max(0.0, s.camera2 / n - mean_c * mean_c) + double(s.within)) * weight;
-        for (uint32_t k = 0; k < kLookupClasses; ++k) out.s.second_moment[k] += s.moment[k] / n * weight;
+        out.v_camera += (std::max(0.0, s.camera2 / n - mean_c * mean_c) + double(s.within)) * weight;
+        for (uint32_t k = 0; k < kLookupClasses; ++k) out.second_moment[k] += s.moment[k] / n * weight;
       }
       s.n *= kWindowDecay, s.total *= kWindowDecay, s.merge *= kWindowDecay, s.camera2 *= kWindowDecay;
       for (float &m : s.moment) m *= kWindowDecay;
