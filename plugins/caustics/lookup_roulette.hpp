@@ -24,13 +24,20 @@ inline LookupClass lookup_class(uint32_t rough_count) {
   return rough_count <= 1 ? kFirstLookup : kLaterLookup;
 }
 
-// The merge technique's density in MIS at lookups behind the first rough vertex, besides q: a quarter.
-// Such a merge and the first rough vertex's merge of the same path have equal pdfs when the bounce
-// between them is diffuse, but the later one sees a caustic's peak through that bounce while the first
-// one's kernel averages it: with the pdfs alone the later merge keeps 1/(1 + q^2)-ish of the weight and a
-// dark wall's pixel takes a bright caustic's value (docs/performance.md section 9). Any factor shared by
-// every technique's weight keeps them a partition of unity; 1/4 is measured there at equal time.
+// The merge technique's density in MIS at a lookup, besides q: a quarter per rough vertex between it and
+// the camera path's first rough vertex. Two merges of one path separated by a diffuse bounce have equal
+// pdfs, but the later one sees a caustic's peak through that bounce while the earlier one's kernel
+// averages it: with the pdfs alone the later merge keeps half the weight or more and a dark wall's pixel
+// takes a bright caustic's value (a camera path from a table via a wall into the focus under a glass ball,
+// docs/performance.md sections 5 and 9). Any factor both sides give a technique keeps the weights a
+// partition of unity (the photon side applies it per rough vertex, mis.hpp); 1/4 is measured there at
+// equal time.
 inline constexpr float kLaterLookupMisFactor = 0.25f;
+// That factor at the lookup vertex with `rough_count` rough vertices up to it (1: the first), in double:
+// long paths take it far below float's range.
+inline double lookup_rank_factor(uint32_t rough_count) {
+  return rough_count <= 1 ? 1.0 : std::pow(double(kLaterLookupMisFactor), double(rough_count - 1));
+}
 
 // The lowest lookup probability: the second moment is measured from the lookups that happen (q Y^2 per
 // lookup, an unbiased estimate at any q), and below this too few happen in a window to measure it.

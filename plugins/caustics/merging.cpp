@@ -26,10 +26,10 @@ bool photon_at_wavelength(const MergeContext &mc, float lambda_p, float lambda_c
 }  // namespace
 
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
-                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, LookupClass cls,
-                         float neff, const TimeWindow &window, float lambda, Mis eta_splat,
-                         CausticsRecord &rec) {
-  const float q = mc.lookup_probability[cls];
+                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s,
+                         uint32_t rough_count, float neff, const TimeWindow &window, float lambda,
+                         Mis eta_splat, CausticsRecord &rec) {
+  const float q = mc.lookup_probability[lookup_class(rough_count)];
   uint32_t evaluated = 0;
   float density_count = 0;
   const float r2 = r * r;
@@ -37,7 +37,7 @@ LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix,
   const float inv_paths = 1.0f / (float(mc.map_paths) * q);
   // The merges at the photon's rough vertices (B) are lookups after the camera path's first rough vertex.
   // B carries each of its vertices' effective counts relative to N_u (guided_pass.cpp).
-  const MergeDensities d = merge_densities(mc, r, neff, cls, window.rho);
+  const MergeDensities d = merge_densities(mc, r, neff, rough_count, window.rho);
   const Mis m_neff = d.neff, eta = d.eta, m_neff_b = d.neff_b;
   const Vec3f ng = Vec3f::load(ix.ng);
   float wo_arr[3];

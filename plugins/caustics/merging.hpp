@@ -62,24 +62,25 @@ struct MergeContext {
   const LightPathEmission *lt_emission = nullptr;
   // Lookup probability per class of rough vertex (lookup_roulette.hpp), set before each camera pass.
   std::array<float, kLookupClasses> lookup_probability{1.0f, 1.0f};
-  // The merge technique's factor on the photon density in MIS at a class of lookup vertex: its lookup
-  // probability, times kLaterLookupMisFactor behind the first rough vertex.
-  float lookup_mis_density(LookupClass c) const {
-    return lookup_probability[c] * (c == kLaterLookup ? kLaterLookupMisFactor : 1.0f);
+  // The merge technique's factor on the photon density in MIS at the lookup vertex with `rough_count`
+  // rough vertices up to it: its class's lookup probability times lookup_rank_factor.
+  Mis lookup_mis_density(uint32_t rough_count) const {
+    return Mis(lookup_probability[lookup_class(rough_count)]) * lookup_rank_factor(rough_count);
   }
 };
 
-// The merge technique's densities in MIS at a lookup of class cls with radius r, effective photon count
-// neff (times the time window's share rho): eta = mis(pi r^2 neff q), neff = mis(neff q), and neff_b, the
-// later lookups' count at the photon's rough vertices (B). merge_photons and the splats' weights share it.
+// The merge technique's densities in MIS at the lookup vertex with `rough_count` rough vertices up to it,
+// radius r, effective photon count neff (times the time window's share rho): eta = mis(pi r^2 neff q),
+// neff = mis(neff q), and neff_b, the count at the photon's rough vertices (B) as seen from the next rough
+// vertex (B carries each further one's rank factor). merge_photons and the splats' weights share it.
 struct MergeDensities {
   Mis eta, neff, neff_b;
 };
-inline MergeDensities merge_densities(const MergeContext &mc, float r, float neff, LookupClass cls,
+inline MergeDensities merge_densities(const MergeContext &mc, float r, float neff, uint32_t rough_count,
                                       float rho) {
-  const float q_mis = mc.lookup_mis_density(cls), r2 = r * r;
+  const Mis q_mis = mc.lookup_mis_density(rough_count), r2 = Mis(r) * r;
   return {mis(kPi * r2 * Mis(neff) * q_mis), mis(Mis(neff) * q_mis),
-          mis(Mis(mc.map_paths) * mc.lookup_mis_density(kLaterLookup) * rho)};
+          mis(Mis(mc.map_paths) * mc.lookup_mis_density(rough_count + 1) * rho)};
 }
 
 // The densities of the first lookup of a camera path through `pixel` whose first vertex lies at
@@ -91,7 +92,7 @@ inline MergeDensities first_merge_densities(const MergeContext &mc, const PixelR
   const float neff = float(mc.map_paths) * window.rho;
   const float r =
       pixel_radius.radius(pixel, merge_radius(mc.radius_per_length, length, mc.scene_radius), neff);
-  return merge_densities(mc, r, neff, kFirstLookup, window.rho);
+  return merge_densities(mc, r, neff, 1, window.rho);
 }
 
 // The most a photon of a rarely chosen light counts in a pixel's photon density.
@@ -124,15 +125,15 @@ struct LookupCost {
 };
 
 // Photon lookup at the lookup vertex x_s (spec 3.4): Epanechnikov kernel of radius r, MIS-weighted merges.
-// cls: the class of lookup vertex, whose lookup probability q the merges count 1/q times and whose
-// MergeContext::lookup_mis_density scales the merge technique's density in the weights. neff: the
+// rough_count: the rough vertices up to x_s; its class's lookup probability q the merges count 1/q times,
+// and MergeContext::lookup_mis_density scales the merge technique's density in the weights. neff: the
 // effective photon count at x_s, times the window's share rho of photon times. window: the photon times the
 // lookup accepts (photon_windows.hpp). lambda: the camera path's wavelength (0 while it carries RGB).
 // eta_splat: mis(splat_eta) at x_1 while photons are splatted, else 0.
 LookupCost merge_photons(const MergeContext &mc, const nimbus_interaction_t &ix, const Vec3f &wo,
-                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s, LookupClass cls,
-                         float neff, const TimeWindow &window, float lambda, Mis eta_splat,
-                         CausticsRecord &rec);
+                         const Rgb &beta, const CameraMis &mis_state, float r, uint32_t s,
+                         uint32_t rough_count, float neff, const TimeWindow &window, float lambda,
+                         Mis eta_splat, CausticsRecord &rec);
 
 // The effective photon count at x (spec 6.3): N_u, raised where the guide's chains aimed.
 inline float effective_photons(const MergeContext &mc, const Vec3f &x) {
@@ -226,7 +227,7 @@ class MergingPath {
     lookup_ = mis_.append(rough);
     const LookupClass cls = lookup_class(mis_.rough_count);
     q_ = mc_.lookup_probability[cls];
-    q_mis_ = mc_.lookup_mis_density(cls);
+    q_mis_ = mc_.lookup_mis_density(mis_.rough_count);
     if (lookup_) {
       // Photons of similar time only (spec 7.1): the window's share of photon times scales the merge
       // density like the lookup probability does.
@@ -249,8 +250,8 @@ class MergingPath {
     if (lookup_ && v.segments + 2 <= mc_.max_depth &&
         (q_ >= 1 || float(mix64(key_ ^ v.segments) >> 40) * 0x1p-24f < q_)) {
       radii_.add(radius_);
-      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments, cls, neff_,
-                                         window_, v.lambda, mis(eta_splat_), rec);
+      const LookupCost c = merge_photons(mc_, *v.ix, v.wo, v.beta, mis_, radius_, v.segments,
+                                         mis_.rough_count, neff_, window_, v.lambda, mis(eta_splat_), rec);
       tally_.lookup_work[cls] += c.work();
       rec.lookup_moment[cls] += q_ * c.light * c.light;
       if (cls == kFirstLookup) {
@@ -311,7 +312,7 @@ class MergingPath {
   bool shrunk_ = false;  // r_a is below the schedule's radius (pixel_radius.hpp)
   uint64_t key_;         // the lookup roulette's draws: hashes of it and the vertex
   float q_ = 1;          // lookup probability at the current vertex (the merges count 1/q times)
-  float q_mis_ = 1;      // the merge density's factor in MIS there (MergeContext::lookup_mis_density)
+  Mis q_mis_ = 1;        // the merge density's factor in MIS there (MergeContext::lookup_mis_density)
   float neff_ = 0;       // effective photon count at the current lookup vertex (times window_.rho)
   TimeWindow window_;    // the photon times the current lookup accepts
   float length_ = 0;     // path length from the lens to the current vertex

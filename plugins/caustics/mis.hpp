@@ -34,10 +34,12 @@
 #pragma once
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+
+#include "lookup_roulette.hpp"
+#include "mis_scale.hpp"
 
 namespace nimbus::caustics {
 
@@ -48,53 +50,15 @@ inline constexpr uint32_t kPhotonMaxVertices = 32;
 // Pending camera-side merge terms: a term at x_s' can only be a technique for paths with
 // k - s' <= D_photon, so at most D_photon + 1 terms are alive at once.
 inline constexpr uint32_t kMaxCameraTerms = kPhotonMaxVertices + 1;
-// MIS state values: squared pdf ratios and their products.
-using Mis = double;
-// The MIS exponent beta = 2 applied to one factor.
-inline float mis(float x) { return x * x; }
-inline Mis mis(Mis x) { return x * x; }
-// x * 2^n, rounded as std::ldexp rounds it (the product with a power of two is rounded once), without
-// its library call in the paths' inner loops; n beyond the normal exponents goes to std::ldexp.
-inline Mis times_pow2(Mis x, int n) {
-  if (n < -1022 || n > 1023) return std::ldexp(x, n);
-  return x * std::bit_cast<Mis>(uint64_t(n + 1023) << 52);
-}
-// The values are renormalised when the largest leaves [2^-kMisRescale, 2^kMisRescale].
-inline constexpr int kMisRescale = 400;
-// Moves the power of two of the largest of `values` (if out of range) into exp2; values 2^800 below
-// the largest become 0 (they no longer change any weight).
-template <class Get>
-inline void renormalise(uint32_t n, Get &&value, int &exp2) {
-  Mis largest = 0;
-  for (uint32_t i = 0; i < n; ++i) largest = std::max(largest, value(i));
-  if (!(largest > 0) || !std::isfinite(largest) ||
-      (largest < times_pow2(1.0, kMisRescale) && largest > times_pow2(1.0, -kMisRescale)))
-    return;
-  const int e = std::ilogb(largest);
-  for (uint32_t i = 0; i < n; ++i) value(i) = times_pow2(value(i), -e);
-  exp2 += e;
-}
-// log2 of x * 2^exp2, as a photon stores A and B (-inf for 0).
-inline float stored_log2(Mis x, int exp2) {
-  return x > 0 ? float(std::log2(x) + exp2) : -std::numeric_limits<float>::infinity();
-}
-
-// A sum of camera terms R (times 2^exp2): the value of sum * factor, and whether it overflowed.
-struct MisSum {
-  Mis sum = 0;
-  int exp2 = 0;
-  Mis times(Mis factor, bool &clamped) const {
-    const Mis v = times_pow2(sum * factor, exp2);
-    if (!(v <= std::numeric_limits<Mis>::max())) clamped = true;
-    return v;
-  }
-};
-
 // Photon-side state of one photon path (spec 3.3, "photon side").
 struct PhotonMis {
   Mis A = 0;  // (q_H + q_N) / q_M,s  times  eta_s / omega^C_s, at the current vertex
   Mis B = 0;  // sum over the stored rough vertices s' further towards the light of
-              // q_M,s' / q_M,s, over the same factors except the radius ratio (included)
+              // q_M,s' / q_M,s, over the same factors except the radius ratio (included); each term
+              // times mis(kLaterLookupMisFactor) per rough vertex between s' and the photon's end, whose
+              // merge multiplies in the rest of its rank factor (lookup_roulette.hpp)
+  // The MIS exponent of kLaterLookupMisFactor: B's decay per rough vertex.
+  static constexpr Mis kRankDecay = Mis(kLaterLookupMisFactor) * kLaterLookupMisFactor;
   // Photon guiding (spec 6.3): the merge at s' has the effective photon count N_u (1 + c I(x_s')), so its
   // term in B weighs (1 + c I)^2 = 1 + 2 c I + c^2 I^2 (the MIS exponent). c is known only once the pass
   // is done: these are the same sum as B with each term times I and times I^2.
@@ -106,6 +70,13 @@ struct PhotonMis {
   float log2_B() const { return stored_log2(B, exp2); }
   float log2_B_importance() const { return stored_log2(B_importance, exp2); }
   float log2_B_importance2() const { return stored_log2(B_importance2, exp2); }
+
+  // The state's values: A, B, B_importance, B_importance2.
+  auto value() {
+    return [this](uint32_t i) -> Mis & {
+      return i == 0 ? A : i == 1 ? B : i == 2 ? B_importance : B_importance2;
+    };
+  }
 
   // Emission. hittable: BSDF sampling can hit the emitter (area and non-delta infinite lights).
   // cos_e: |cos| at the emitter between its normal and the photon direction (1 for infinite lights).
@@ -129,27 +100,38 @@ struct PhotonMis {
   // of the reverse direction (what a camera path would use). E: NEE term of the first vertex (below), 0
   // elsewhere. rough / stored: the vertex's class and whether a photon was stored at it (then the merge
   // there is a technique for every longer path through it). importance: I at the stored vertex.
+  // A rough vertex lies between every earlier stored vertex and any later merge: their terms take one
+  // more rank factor (kRankDecay).
   void scatter(float c_out, float w_fwd, float w_rev, bool rough, bool stored, Mis E, float importance = 0) {
     const Mis g = mis(Mis(c_out) / w_fwd), r = mis(Mis(w_rev));
-    A = g * (r * A + times_pow2(E, -exp2));
-    if (rough) {
-      B = g * (r * B + (stored ? times_pow2(1.0, -exp2) : 0.0));
-      const Mis I = stored ? Mis(importance) : 0.0;
-      B_importance = g * (r * B_importance + times_pow2(I, -exp2));
-      B_importance2 = g * (r * B_importance2 + times_pow2(I * I, -exp2));
-      b_valid = b_valid || stored;
-    } else {
-      B = g * r * B;
-      B_importance = g * r * B_importance;
-      B_importance2 = g * r * B_importance2;
+    const Mis rb = rough ? r * kRankDecay : r;
+    A *= r;
+    B *= rb;
+    B_importance *= rb;
+    B_importance2 *= rb;
+    if (E > 0) {
+      const Mis t = scaled_term(E, 4, value(), exp2);
+      A += t;
     }
+    if (rough && stored) {
+      const Mis t = scaled_term(1.0, 4, value(), exp2);
+      B += t;
+      const Mis I = importance;
+      if (I > 0) {
+        const Mis t1 = scaled_term(I, 4, value(), exp2);
+        B_importance += t1;
+        const Mis t2 = scaled_term(I * I, 4, value(), exp2);
+        B_importance2 += t2;
+      }
+      b_valid = true;
+    }
+    A *= g;
+    B *= g;
+    B_importance *= g;
+    B_importance2 *= g;
     rescale();
   }
-  void rescale() {
-    Mis *values[] = {&A, &B, &B_importance, &B_importance2};
-    renormalise(
-        4, [&](uint32_t i) -> Mis & { return *values[i]; }, exp2);
-  }
+  void rescale() { renormalise(4, value(), exp2); }
 };
 
 // log2 of B with every term at its vertex's effective photon count relative to N_u, squared (the MIS
@@ -197,6 +179,11 @@ struct CameraMis {
   Mis lt = 0, lt_first = 0;
   mutable bool clamped = false;  // a weight's competitors overflowed (see the top)
 
+  // The state's values: the terms in use, then lt.
+  auto value() {
+    return [this](uint32_t i) -> Mis & { return i < n_terms ? terms[i].R : lt; };
+  }
+
   // Arrival at x_{j+1}: c_in = |cos| at it. Not called for escaped rays (infinite lights).
   void arrive(float c_in) {
     const Mis m = mis(Mis(c_in));
@@ -239,22 +226,24 @@ struct CameraMis {
       terms[n++] = t;
     }
     n_terms = n;
-    if (lookup && n_terms < kMaxCameraTerms)
-      terms[n_terms++] =
-          CameraTerm{times_pow2(g * (mis(eta) + mis(eta_splat)), -exp2), j, false, false, false};
-    lt = lt * g * r + (eta_lt > 0 ? times_pow2(g * eta_lt, -exp2) : 0.0);
+    lt *= g * r;
+    if (lookup && n_terms < kMaxCameraTerms) {
+      const Mis R = scaled_term(g * (mis(eta) + mis(eta_splat)), n_terms + 1, value(), exp2);
+      terms[n_terms++] = CameraTerm{R, j, false, false, false};
+    }
+    if (eta_lt > 0) {
+      const Mis t = scaled_term(g * eta_lt, n_terms + 1, value(), exp2);
+      lt += t;
+    }
     rescale();
   }
-  void rescale() {
-    renormalise(
-        n_terms + 1, [this](uint32_t i) -> Mis & { return i < n_terms ? terms[i].R : lt; }, exp2);
-  }
+  void rescale() { renormalise(n_terms + 1, value(), exp2); }
   // The light-tracing technique's competitor value at a path end where the camera side alone supplies
   // the rest of the ratio `factor` (times mis(lp_lt) and the light side's factors): x_1's eta before its
   // scatter when the path ends there (first), else R.
   Mis lt_times(Mis factor, bool first) const {
     if (first) return lt_first * factor;
-    const Mis v = times_pow2(lt * factor, exp2);
+    const Mis v = scaled_product(lt, factor, exp2);
     if (!(v <= std::numeric_limits<Mis>::max())) clamped = true;
     return v;
   }

@@ -139,11 +139,19 @@ inline double neff_at(const SyntheticPath &p, uint32_t s) {
   return double(float(double(float(p.neff)) * (1.0 + p.ratio * double(float(p.importance[s])))));
 }
 
-// The lookup probability at rough vertex x_s: q_first at the path's first rough vertex.
+// The merge density's factor at the rough vertex with `rank` rough vertices up to it (1: the first):
+// q_first there, q_later at the second, and kLaterLookupMisFactor less per rough vertex after that.
+inline double lookup_factor_at_rank(const SyntheticPath &p, uint32_t rank) {
+  if (rank <= 1) return p.q_first;
+  double f = p.q_later;
+  for (uint32_t n = 2; n < rank; ++n) f *= double(kLaterLookupMisFactor);
+  return f;
+}
+// The same at rough vertex x_s.
 inline double lookup_probability_at(const SyntheticPath &p, uint32_t s) {
-  for (uint32_t j = 1; j < s; ++j)
-    if (p.rough(j)) return p.q_later;
-  return p.q_first;
+  uint32_t rank = 0;
+  for (uint32_t j = 1; j <= s; ++j) rank += p.rough(j) ? 1 : 0;
+  return lookup_factor_at_rank(p, rank);
 }
 
 // The merge at s is a technique (E1-E4; lookups at every rough vertex).

@@ -121,10 +121,11 @@ Weights production(const SyntheticPath &p) {
       break;
     }
     const bool lookup = cm.append(p.rough(j));
-    // The plugin's radius: r_a, fixed at the first rough vertex; its lookup probability by class.
+    // The plugin's radius: r_a, fixed at the first rough vertex.
     if (lookup && cm.rough_count == 1) area = Mis(float(p.area));
-    const Mis q = Mis(float(lookup_class(cm.rough_count) == kFirstLookup ? p.q_first : p.q_later));
-    const Mis q_b = Mis(float(p.q_later));
+    // The plugin's factors in double (lookup_rank_factor): this vertex's, and the next rough one's for B.
+    const Mis q = lookup_factor_at_rank(p, cm.rough_count);
+    const Mis q_b = lookup_factor_at_rank(p, cm.rough_count + 1);
     // The production code's effective count at a lookup vertex: N_u (1 + c I) in double, as a float.
     const Mis neff_j = Mis(float(double(neff) * (1.0 + p.ratio * double(float(p.importance[j])))));
     // The splat technique's eta at x_1, as MergingPath and photon_splats.cpp compute it.
