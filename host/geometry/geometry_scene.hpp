@@ -29,6 +29,7 @@ struct ShapeRecord {
   float area = 0;
   // A moving shape (its geometry in object space, an Embree instance with time steps); null when static.
   const MotionTransform *motion = nullptr;
+  RTCGeometry instance = nullptr;  // that instance (the scene holds it)
 };
 
 class GeometryScene {
@@ -65,6 +66,8 @@ class GeometryScene {
   float embree_time(float time) const {
     return moves_ ? std::clamp((time - shutter_open_) / (shutter_close_ - shutter_open_), 0.0f, 1.0f) : 0.0f;
   }
+  // A moving shape's object-to-world transform at scene time `time`, as Embree's intersection used it.
+  Transform instance_transform(const ShapeRecord &s, float time) const;
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   std::vector<ShapeRecord> shapes_;
