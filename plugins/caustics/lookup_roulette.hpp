@@ -34,9 +34,12 @@ inline LookupClass lookup_class(uint32_t rough_count) {
 // equal time.
 inline constexpr float kLaterLookupMisFactor = 0.25f;
 // That factor at the lookup vertex with `rough_count` rough vertices up to it (1: the first), in double:
-// long paths take it far below float's range.
+// long paths take it far below float's range. A product, not std::pow: every camera vertex asks, and
+// paths have a few rough vertices.
 inline double lookup_rank_factor(uint32_t rough_count) {
-  return rough_count <= 1 ? 1.0 : std::pow(double(kLaterLookupMisFactor), double(rough_count - 1));
+  double f = 1;
+  for (uint32_t n = 1; n < rough_count; ++n) f *= kLaterLookupMisFactor;
+  return f;
 }
 
 // The lowest lookup probability: the second moment is measured from the lookups that happen (q Y^2 per
