@@ -218,12 +218,11 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
   // (Embree's instance hit distance t holds there too), carried back to world space below.
   const Vec3f world_dir = Vec3f::load(ray.dir);
   Vec3f org = Vec3f::load(ray.org), dir = world_dir;
-  std::optional<Transform> to_world;  // evaluated once per hit, and only for a moving shape
-  if (s.motion) to_world = instance_transform(s, time);
-  if (s.motion && (s.type == ShapeType::Sphere || s.type == ShapeType::Disk)) {
-    const Transform to_object = to_world->inverse();
-    org = to_object.point(org), dir = to_object.vector(dir);
-  }
+  // Evaluated once per hit, and only for a moving shape.
+  std::optional<Transform> to_world, to_object;
+  if (s.motion) to_world = instance_transform(s, time), to_object = to_world->inverse();
+  if (s.motion && (s.type == ShapeType::Sphere || s.type == ShapeType::Disk))
+    org = to_object->point(org), dir = to_object->vector(dir);
   Vec3f p, ng, ns, dpdu, dpdv;
   Vec2f uv;
   Vec3f error;  // bound on each coordinate's rounding error in p
@@ -329,7 +328,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
     // A ray leaving p reaches Embree in object space: its origin rounded once more through the inverse.
     // That rounding, carried back through |M|, joins the bound, or the offset origin could land on the
     // object-space surface it leaves and meet it again at t = 0.
-    const Transform inv = m.inverse();
+    const Transform &inv = *to_object;
     Vec3f origin_error;
     for (int c = 0; c < 3; ++c) {
       float own = std::abs(inv(c, 3));

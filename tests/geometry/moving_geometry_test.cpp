@@ -40,6 +40,28 @@ SceneDesc moving_cube(const std::vector<MotionTransform::Key> &keys) {
   return d;
 }
 
+// A ray at a random time from `distance` away from `centre` towards a random point within `spread` of it
+// (per coordinate), and what it met then: hit.geom_id 0 is the cube, whose surface ix then holds.
+struct CubeShot {
+  float time = 0;
+  Vec3f origin;
+  nimbus_ray_t ray{};
+  nimbus_hit_t hit{};
+  nimbus_interaction_t ix{};
+};
+CubeShot shoot_at(const GeometryScene &g, std::mt19937 &rng, const Vec3f &centre, float spread,
+                  float distance) {
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  CubeShot s;
+  s.time = u(rng);
+  const Vec3f target = centre + Vec3f{u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f} * (2 * spread);
+  s.origin = centre + normalize(Vec3f(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f)) * distance;
+  s.ray = ray_from(s.origin, target - s.origin);
+  g.intersect(s.ray, s.hit, s.time);
+  if (s.hit.geom_id == 0) g.interaction(s.ray, s.hit, s.ix, s.time);
+  return s;
+}
+
 TEST(MovingGeometry, RaysMeetTheMeshWhereItIsAtTheirTime) {
   // The cube's centre moves from x = 0 to x = 2: it covers x = 2 from t = 0.75 on.
   const SceneDesc d = moving_cube({{0.0f, Transform{}}, {1.0f, Transform::translate({2, 0, 0})}});
@@ -76,23 +98,16 @@ TEST(MovingGeometry, SurfaceAtTheRaysTimeIsWhereEmbreeHitIt) {
   auto g = GeometryScene::build(d);
   ASSERT_TRUE(g.ok()) << g.error().message;
   std::mt19937 rng(11);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
   int hits = 0;
   for (int i = 0; i < 2000; ++i) {
-    const float time = u(rng);
-    const Vec3f target{u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f};
-    const Vec3f origin =
-        Vec3f(0.5f, 0.25f, 0) + normalize(Vec3f(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f)) * 6;
-    const nimbus_ray_t ray = ray_from(origin, target + Vec3f(0.5f, 0.25f, 0) - origin);
-    nimbus_hit_t hit{};
-    (*g)->intersect(ray, hit, time);
-    if (hit.geom_id != 0) continue;
+    const CubeShot shot = shoot_at(**g, rng, Vec3f(0.5f, 0.25f, 0), 0.5f, 6);
+    if (shot.hit.geom_id != 0) continue;
     ++hits;
-    nimbus_interaction_t ix{};
-    (*g)->interaction(ray, hit, ix, time);
+    const float time = shot.time;
+    const nimbus_interaction_t &ix = shot.ix;
     // Embree interpolates with approximate trigonometry: 1e-4 of a unit cube 6 units away is ~100 times
     // the float rounding of the hit and still ~1/100 of a pixel footprint at any usual resolution.
-    const Vec3f along = origin + Vec3f::load(ray.dir) * hit.t;
+    const Vec3f along = shot.origin + Vec3f::load(shot.ray.dir) * shot.hit.t;
     EXPECT_LT(length(Vec3f::load(ix.p) - along), 1e-4f) << "time " << time;
     EXPECT_NEAR(length(Vec3f::load(ix.ng)), 1.0f, 1e-4f);
     EXPECT_TRUE(ix.flags & NIMBUS_IX_FRONT_FACE) << "rays from outside meet the outside";
@@ -121,16 +136,11 @@ TEST(MovingGeometry, RaysLeavingAMovingSurfaceDoNotMeetItAgain) {
     const auto random_dir = [&] { return normalize(Vec3f(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f)); };
     int hits = 0, outward_again = 0, inward_same_face = 0;
     for (int i = 0; i < 20000; ++i) {
-      const float time = u(rng);
-      const Vec3f centre = Vec3f(0.5f, 0.25f, 0) * scale;
-      const Vec3f origin = centre + random_dir() * (6 * scale);
-      const nimbus_ray_t ray = ray_from(origin, centre + random_dir() * (0.4f * scale) - origin);
-      nimbus_hit_t hit{};
-      (*g)->intersect(ray, hit, time);
-      if (hit.geom_id != 0) continue;
+      const CubeShot shot = shoot_at(**g, rng, Vec3f(0.5f, 0.25f, 0) * scale, 0.4f * scale, 6 * scale);
+      if (shot.hit.geom_id != 0) continue;
       ++hits;
-      nimbus_interaction_t ix{};
-      (*g)->interaction(ray, hit, ix, time);
+      const float time = shot.time;
+      const nimbus_interaction_t &ix = shot.ix;
       const Vec3f p = Vec3f::load(ix.p), ng = Vec3f::load(ix.ng);
       for (const float side : {1.0f, -1.0f}) {
         Vec3f dir = random_dir();
