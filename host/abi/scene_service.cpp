@@ -81,19 +81,35 @@ float bounding_sphere(const nimbus_host_t *host, float center[3]) {
   return g.sphere_radius();
 }
 
-uint32_t sharp_bounds(const nimbus_host_t *host, float alpha_max, nimbus_object_bounds_t *out,
+// Writes the first `capacity` of `objects` into out and returns how many there are.
+template <class Objects, class Keep, class Bounds>
+uint32_t write_bounds(const Objects &objects, Keep &&keep, Bounds &&bounds, nimbus_object_bounds_t *out,
                       uint32_t capacity) {
   uint32_t count = 0;
-  for (const SharpObject &o : world_of(host).sharp_objects) {
-    if (!(o.min_alpha < alpha_max)) continue;
+  for (const auto &o : objects) {
+    if (!keep(o)) continue;
     if (out && count < capacity) {
+      const ObjectBounds &from = bounds(o);
       nimbus_object_bounds_t &b = out[count];
-      o.lo.store(b.lo), o.hi.store(b.hi), o.sphere.center.store(b.center);
-      b.radius = o.sphere.radius;
+      from.lo.store(b.lo), from.hi.store(b.hi), from.sphere.center.store(b.center);
+      b.radius = from.sphere.radius;
     }
     ++count;
   }
   return count;
+}
+
+uint32_t sharp_bounds(const nimbus_host_t *host, float alpha_max, nimbus_object_bounds_t *out,
+                      uint32_t capacity) {
+  return write_bounds(
+      world_of(host).sharp_objects, [&](const SharpObject &o) { return o.min_alpha < alpha_max; },
+      [](const SharpObject &o) -> const ObjectBounds & { return o.bounds; }, out, capacity);
+}
+
+uint32_t moving_bounds(const nimbus_host_t *host, nimbus_object_bounds_t *out, uint32_t capacity) {
+  return write_bounds(
+      world_of(host).moving_objects, [](const ObjectBounds &) { return true; },
+      [](const ObjectBounds &o) -> const ObjectBounds & { return o; }, out, capacity);
 }
 
 float generate_ray(const nimbus_host_t *host, const nimbus_camera_sample_t *sample, nimbus_ray_t *ray) {
@@ -166,7 +182,8 @@ const nimbus_host_scene_query_v1_t kSceneQueryV1 = {sizeof(nimbus_host_scene_que
                                                     sharp_bounds,
                                                     intersect_at,
                                                     occluded_at,
-                                                    interaction_at};
+                                                    interaction_at,
+                                                    moving_bounds};
 
 const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t),
                                            generate_ray,

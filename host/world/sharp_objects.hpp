@@ -6,17 +6,15 @@
 
 #include <vector>
 
-#include <nimbus/cpp/bounding_sphere.hpp>
-
 #include "geometry/geometry_scene.hpp"
 #include "materials/bsdf.hpp"
 #include "scene/scene_desc.hpp"
+#include "world/object_bounds.hpp"
 
 namespace nimbus {
 
 struct SharpObject {
-  Vec3f lo, hi;         // the object's box
-  Sphere sphere;        // and a sphere around it (the smaller of the box's and Ritter's)
+  ObjectBounds bounds;  // over the whole shutter (object_bounds.hpp)
   float min_alpha = 0;  // the smallest GGX alpha the material can have anywhere (0: delta or textured)
 };
 

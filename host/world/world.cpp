@@ -28,6 +28,7 @@ Expected<std::unique_ptr<World>> World::build(const SceneDesc &desc, FilterType 
   world->sharp_objects = find_sharp_objects(desc, *world->geometry, world->bsdfs);
   world->camera = Camera(desc.camera, desc.render.width, desc.render.height);
   world->shutter = desc.camera.shutter;
+  world->moving_objects = find_moving_objects(*world->geometry, world->shutter.instantaneous());
   world->filter = PixelFilter(filter);
   return world;
 }

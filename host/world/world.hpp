@@ -30,7 +30,8 @@ struct World {
   Camera camera;
   Shutter shutter;  // the camera's (scene time)
   PixelFilter filter;
-  std::vector<SharpObject> sharp_objects;  // objects that can form caustics (sharp_objects.hpp)
+  std::vector<SharpObject> sharp_objects;    // objects that can form caustics (sharp_objects.hpp)
+  std::vector<ObjectBounds> moving_objects;  // objects that move while the shutter is open
 
   // Builds geometry, lights, materials and camera for `desc` (which must outlive the world), and the pixel
   // filter the render job resolved (the scene's, or the command line's instead).

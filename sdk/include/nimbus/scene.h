@@ -93,6 +93,14 @@ typedef struct nimbus_host_scene_query_v1 {
    * borrowed; out is caller storage. */
   void (*interaction_at)(const nimbus_host_t *host, const nimbus_ray_t *ray, const nimbus_hit_t *hit,
                          float time, nimbus_interaction_t *out);
+  /* Since 1.9 (absent from older hosts' tables: check NIMBUS_HAS_MEMBER before calling).
+   * [any-thread] Bounds of what moves while the shutter is open: one record per object that moves
+   * rigidly or deforms, its box and sphere enclosing every place it takes during the shutter, in the
+   * host's object order. A segment that meets none of them meets the same surfaces at every time of the
+   * shutter. Writes the first min(count, capacity) records into out (caller storage; may be NULL when
+   * capacity is 0) and returns count (0 when nothing moves or the shutter is instantaneous). Constant
+   * between prepare and end_render. */
+  uint32_t (*moving_bounds)(const nimbus_host_t *host, nimbus_object_bounds_t *out, uint32_t capacity);
 } nimbus_host_scene_query_v1_t;
 
 /* ---- nimbus.host.camera@1 ---------------------------------------------------------------------- */
