@@ -93,7 +93,6 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     importance_ = pass_importance_ = ImportanceMap(scene_center_, scene_radius_);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
     merge_.clock = PhotonClock::of(h, services().camera, options_.times_matched);
-    merge_.moving = MovingBounds::of(h, services().scene, services().camera, merge_.clock.timed());
     merge_.spectral = spectral();
     // Zero-cost rule (spec 9): no sharp object or no photon-emitting light, no photon pass at all.
     const bool caustics_can_form = emitters_.emits_photons() && !emitters_.targets().empty();
@@ -113,7 +112,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     lens_.begin_render(emitters_,
                        armed_ && options_.times_matched && splats_possible(h, services(), spectral()),
                        normalize(Vec3f::load(eye.dir)), theta_pix_, uint64_t(width_) * height_, merge_);
-    // The `caustics` element: a class of paths' light (spec 8), with or without a map or the switch.
+    // The `caustics` element is the light of a class of paths (spec 8), with or without a map, and with
+    // the switch off too (then the path tracer's share of that light).
     classify_ = caustics_can_form && ids().diverted != NIMBUS_ELEMENT_INVALID;
     ScheduleConfig cfg;
     cfg.camera_paths = cfg.frame_pixels = std::max<uint64_t>(1, uint64_t(width_) * height_);
@@ -149,8 +149,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     pending_used_.clear();
     if (paths > 0) {
       const auto t0 = std::chrono::steady_clock::now();
-      // The last map's uniform paths and whether lookups used them adapt the light selection (spec 6.1)
-      // and the emission map's densities (photon_emission: adaptive-map).
+      // The last map's uniform paths and whether lookups used them adapt the light selection (spec 6.1).
+      // So do they the emission map's densities (photon_emission: adaptive-map).
       EmissionMap &map = emitters_.emission_map();
       pass_.path_use().for_each([&](uint32_t light, uint32_t cell, bool uniform, bool used) {
         if (uniform) emission_selection_.count(light, used), map.count(cell, used);

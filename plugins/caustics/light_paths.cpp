@@ -118,8 +118,8 @@ void PhotonTracer::connect_light_vertex(const nimbus_thread_ctx_t &ctx, const ni
   if (x >= in.width || y >= in.height) return;
   // A merge at x_1 needs the photon on the camera's side of the surface (merging.cpp's side test).
   const bool v1 = c.stored && link.same_side;
-  const MergeDensities md = first_merge_densities(mc, *in.pixel_radius, size_t(y) * in.width + x, link.length,
-                                                  c.time_u, Vec3f::load(ix.p));
+  const MergeDensities md =
+      first_merge_densities(mc, *in.pixel_radius, size_t(y) * in.width + x, link.length, c.time_u);
   const double density = link.density;
   const Mis eta_splat = v1 && mc.splat_paths > 0 ? mis(splat_eta(mc.splat_paths, density)) : 0.0;
   bool clamped = false;

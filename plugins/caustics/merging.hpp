@@ -17,7 +17,6 @@
 #include "light_paths.hpp"
 #include "lookup_roulette.hpp"
 #include "mis.hpp"
-#include "moving_bounds.hpp"
 #include "occupancy_filter.hpp"
 #include "path_use.hpp"
 #include "photon_map.hpp"
@@ -47,7 +46,6 @@ struct MergeContext {
   float radius_per_length = 0;        // merge radius per unit path length at the map's pass
   PhotonClock clock;                  // photon times (spec 7.1): untimed unless geometry or lights move
   float time_half_width = 0;          // h of the map's pass
-  MovingBounds moving;                // where lookups take the whole shutter (off: nowhere)
   // Dispersion (spec 7.2): the host's spectral service when the scene disperses light (else null), and
   // the half width (nm) of the wavelength window of the map's pass.
   const nimbus_host_spectral_v1_t *spectral = nullptr;
@@ -85,22 +83,13 @@ inline MergeDensities merge_densities(const MergeContext &mc, float r, float nef
           mis(Mis(mc.map_paths) * mc.lookup_mis_density(rough_count + 1) * rho)};
 }
 
-// The share of photon times the merge technique's density counts at a first lookup (its window's, or the
-// whole shutter's where the camera path to it is still: moving_bounds.hpp); later lookups count the
-// window's share in MIS wherever they merge (B on the photon side has no camera path to test).
-inline float first_lookup_rho(const MergeContext &mc, const TimeWindow &window, bool still) {
-  return still ? 1.0f : window.rho;
-}
-
-// The densities of the first lookup of a camera path through `pixel` whose first vertex x1 lies at
-// distance `length` (the pixel's radius, the first lookup's probability, the time window around time_u
-// or the whole shutter): what a connection of x_1 to the lens competes with (the splat and
-// light-tracing techniques).
+// The densities of the first lookup of a camera path through `pixel` whose first vertex lies at
+// distance `length` (the pixel's radius, the first lookup's probability, the time window around time_u):
+// what a connection of x_1 to the lens competes with (the splat and light-tracing techniques).
 inline MergeDensities first_merge_densities(const MergeContext &mc, const PixelRadius &pixel_radius,
-                                            size_t pixel, float length, float time_u, const Vec3f &x1) {
+                                            size_t pixel, float length, float time_u) {
   const TimeWindow window = mc.clock.window(time_u, mc.time_half_width);
-  const bool still = window.active && mc.moving.lens_segment_still(x1);
-  const float neff = float(mc.map_paths) * first_lookup_rho(mc, window, still);
+  const float neff = float(mc.map_paths) * window.rho;
   const float r =
       pixel_radius.radius(pixel, merge_radius(mc.radius_per_length, length, mc.scene_radius), neff);
   return merge_densities(mc, r, neff, 1, window.rho);
@@ -214,12 +203,6 @@ class MergingPath {
     const float c_in = std::abs(dot(Vec3f::load(ix.ng), dir));
     // x_1 seen from the lens, for the splat technique's camera density there.
     if (length_ == 0) cos_first_ = c_in, axis_cos_ = dot(mc_.view_axis, dir);
-    // Whether the path so far meets nothing that moves (its lookups then take the whole shutter).
-    if (mc_.moving.enabled()) {
-      const Vec3f p = Vec3f::load(ix.p);
-      still_ = length_ == 0 ? mc_.moving.lens_segment_still(p)
-                            : still_ && mc_.moving.segment_still(p - dir * t, p);
-    }
     length_ += t;
     mis_.arrive(c_in);
   }
@@ -249,10 +232,7 @@ class MergingPath {
       // Photons of similar time only (spec 7.1): the window's share of photon times scales the merge
       // density like the lookup probability does.
       window_ = mc_.clock.window(v.time_u, mc_.time_half_width);
-      const bool whole = window_.active && still_;
-      neff_ = effective_photons(mc_, Vec3f::load(v.ix->p)) *
-              (cls == kFirstLookup ? first_lookup_rho(mc_, window_, whole) : window_.rho);
-      window_.active = window_.active && !whole;  // keeps rho: B's densities count the window's share
+      neff_ = effective_photons(mc_, Vec3f::load(v.ix->p)) * window_.rho;
     }
     eta_splat_ = 0;
     if (lookup_ && v.segments == 1 && (mc_.splat_paths > 0 || mc_.lt_paths > 0)) {
@@ -335,7 +315,6 @@ class MergingPath {
   Mis q_mis_ = 1;        // the merge density's factor in MIS there (MergeContext::lookup_mis_density)
   float neff_ = 0;       // effective photon count at the current lookup vertex (times window_.rho)
   TimeWindow window_;    // the photon times the current lookup accepts
-  bool still_ = false;   // no segment so far meets anything that moves (MovingBounds)
   float length_ = 0;     // path length from the lens to the current vertex
   float cos_first_ = 0, axis_cos_ = 0;  // at x_1: |cos| to the normal, cos to the view axis
   Mis eta_splat_ = 0;                   // splat_eta at the current vertex (x_1 only)

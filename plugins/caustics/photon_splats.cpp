@@ -29,7 +29,7 @@ struct SplatJob {
 // *without: the weight without light paths (light_path_trial.hpp), when asked for.
 float weight(const MergeContext &mc, const PixelRadius &pixel_radius, size_t pixel, const PhotonSplat &s,
              const Photon &ph, bool &clamped, float *without = nullptr) {
-  const MergeDensities d = first_merge_densities(mc, pixel_radius, pixel, s.length, ph.time_u, ph.position());
+  const MergeDensities d = first_merge_densities(mc, pixel_radius, pixel, s.length, ph.time_u);
   const Mis lt = mc.lt_paths > 0 ? mis(splat_eta(mc.lt_paths, s.density)) * std::exp2(Mis(ph.lt)) : 0.0;
   const Mis eta_splat = mis(splat_eta(double(mc.map_paths), s.density));
   if (without)

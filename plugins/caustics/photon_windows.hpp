@@ -11,8 +11,6 @@
 // shutter is exact at any h; the spec's window shifted inside the shutter integrates to 1 over u_p only
 // and leaves a bias at the shutter's ends that falls only as fast as h. h = (1/8) j^((alpha-1)/2) at pass
 // j shrinks with the merge radius.
-// A lookup whose camera path meets nothing that moves takes every photon instead (moving_bounds.hpp):
-// the window then stays inactive but keeps its share rho for the densities of later merges in MIS.
 //
 // Wavelength. A photon past a dispersive vertex carries its wavelength; a camera path past one merges
 // such photons within h_lambda = 10 nm j^((alpha-1)/2) of its own (merging.cpp), mirrored at 360 and

@@ -50,12 +50,11 @@ TEST(CausticsMotion, MovingGlassAgreesWithPathTracer) {
 }
 
 // A plate above the floor hides part of a moving light's caustic from the camera for the first half of
-// the shutter, then slides away. Lookups whose camera path meets nothing that moves merge the photons of
-// the whole shutter (moving_bounds.hpp); those behind the plate's sweep keep the time window: merging
-// every time there would light the hidden half of the exposure with the caustic as it was then (the
-// region means come out ~6 % low when every lookup takes the whole shutter). The region means over the
-// caustic and over the hidden part match the light tracer within 3 sigma (Student's t for the solver's
-// sample standard error over kSeeds renders, 7 degrees of freedom: 4.53 SEs).
+// the shutter, then slides away: the lookups behind it must merge only photons of their own time (a
+// lookup merging every time there lights the hidden half of the exposure with the caustic as it was
+// then: the region means come out ~6 % low). The region means over the caustic and over its hidden part
+// match the light tracer within 3 sigma (Student's t for the solver's sample standard error over
+// kSeeds renders, 7 degrees of freedom: 4.53 SEs).
 TEST(CausticsMotion, CausticHiddenByAMovingPlateConvergesToLightTracer) {
   const std::string scene = from_above(
       R"(
