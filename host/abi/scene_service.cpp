@@ -81,35 +81,26 @@ float bounding_sphere(const nimbus_host_t *host, float center[3]) {
   return g.sphere_radius();
 }
 
-// Writes the first `capacity` of `objects` into out and returns how many there are.
-template <class Objects, class Keep, class Bounds>
-uint32_t write_bounds(const Objects &objects, Keep &&keep, Bounds &&bounds, nimbus_object_bounds_t *out,
-                      uint32_t capacity) {
-  uint32_t count = 0;
-  for (const auto &o : objects) {
-    if (!keep(o)) continue;
-    if (out && count < capacity) {
-      const ObjectBounds &from = bounds(o);
-      nimbus_object_bounds_t &b = out[count];
-      from.lo.store(b.lo), from.hi.store(b.hi), from.sphere.center.store(b.center);
-      b.radius = from.sphere.radius;
-    }
-    ++count;
-  }
-  return count;
+// Writes b as record `index` of out when it fits in `capacity`.
+void write_bounds(const ObjectBounds &b, uint32_t index, nimbus_object_bounds_t *out, uint32_t capacity) {
+  if (!out || index >= capacity) return;
+  nimbus_object_bounds_t &o = out[index];
+  b.lo.store(o.lo), b.hi.store(o.hi), b.sphere.center.store(o.center);
+  o.radius = b.sphere.radius;
 }
 
 uint32_t sharp_bounds(const nimbus_host_t *host, float alpha_max, nimbus_object_bounds_t *out,
                       uint32_t capacity) {
-  return write_bounds(
-      world_of(host).sharp_objects, [&](const SharpObject &o) { return o.min_alpha < alpha_max; },
-      [](const SharpObject &o) -> const ObjectBounds & { return o.bounds; }, out, capacity);
+  uint32_t count = 0;
+  for (const SharpObject &o : world_of(host).sharp_objects)
+    if (o.min_alpha < alpha_max) write_bounds(o.bounds, count++, out, capacity);
+  return count;
 }
 
 uint32_t moving_bounds(const nimbus_host_t *host, nimbus_object_bounds_t *out, uint32_t capacity) {
-  return write_bounds(
-      world_of(host).moving_objects, [](const ObjectBounds &) { return true; },
-      [](const ObjectBounds &o) -> const ObjectBounds & { return o; }, out, capacity);
+  const std::vector<ObjectBounds> &moving = world_of(host).moving_objects;
+  for (size_t i = 0; i < moving.size(); ++i) write_bounds(moving[i], uint32_t(i), out, capacity);
+  return uint32_t(moving.size());
 }
 
 float generate_ray(const nimbus_host_t *host, const nimbus_camera_sample_t *sample, nimbus_ray_t *ray) {

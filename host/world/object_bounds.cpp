@@ -53,16 +53,15 @@ ObjectBounds swept_bounds(const ObjectBounds &rest, const MotionTransform &motio
   return o;
 }
 
+// Whether the shape moves while the shutter is open (rigidly or by deforming).
+bool shape_moves(const ShapeRecord &shape) { return shape.motion || (shape.mesh && shape.mesh->deforms()); }
+
 }  // namespace
 
 ObjectBounds object_bounds(const ShapeRecord &shape) {
   const ObjectBounds rest = resting_bounds(shape);
   // A rigidly moving shape's geometry is in its own space: its bounds are those of its sweep.
   return shape.motion && !rest.sphere.empty() ? swept_bounds(rest, *shape.motion) : rest;
-}
-
-bool shape_moves(const ShapeRecord &shape) {
-  return shape.motion || (shape.mesh && !shape.mesh->position_steps.empty());
 }
 
 std::vector<ObjectBounds> find_moving_objects(const GeometryScene &geometry, bool instantaneous_shutter) {

@@ -21,9 +21,6 @@ struct ObjectBounds {
 // moves (rigid motion or deformation). An empty sphere when the shape has no geometry.
 ObjectBounds object_bounds(const ShapeRecord &shape);
 
-// Whether the shape moves while the shutter is open (rigidly or by deforming).
-bool shape_moves(const ShapeRecord &shape);
-
 // The bounds of every shape that moves, in shape order (none when the shutter is instantaneous).
 std::vector<ObjectBounds> find_moving_objects(const GeometryScene &geometry, bool instantaneous_shutter);
 
