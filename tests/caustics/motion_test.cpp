@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <vector>
 
 #include "photon_windows.hpp"
 #include "sphere_scenes.hpp"
@@ -71,30 +72,23 @@ lights:
   constexpr double kT7 = 4.53;
   const Region regions[2] = {{40, 14, 60, 32}, {42, 22, 56, 32}};  // the caustic; its hidden part
   SceneRenderer r;
-  double sum[2][2] = {}, sum2[2][2] = {};  // [technique][region]
+  std::vector<double> solver_means[2], lt_means[2];  // per region, one per render
   for (int k = 0; k < kSeeds; ++k) {
     const ImageLayers solver = r.render(scene, request("nimbus.caustics", 64, 40 + k));
-    ImageLayers lt;
-    if (k < kReferenceSeeds) lt = r.render(scene, request("nimbus.lt", 1024, 60 + k));
-    for (int g = 0; g < 2; ++g) {
-      const double m = region_mean(solver, regions[g]);
-      sum[0][g] += m, sum2[0][g] += m * m;
-      if (k >= kReferenceSeeds) continue;
-      const double l = region_mean(lt, regions[g]);
-      sum[1][g] += l, sum2[1][g] += l * l;
-    }
+    for (int g = 0; g < 2; ++g) solver_means[g].push_back(region_mean(solver, regions[g]));
+    if (k >= kReferenceSeeds) continue;
+    const ImageLayers lt = r.render(scene, request("nimbus.lt", 1024, 60 + k));
+    for (int g = 0; g < 2; ++g) lt_means[g].push_back(region_mean(lt, regions[g]));
   }
   for (int g = 0; g < 2; ++g) {
-    const double n[2] = {kSeeds, kReferenceSeeds};
-    double mean[2], se2[2];
-    for (int t = 0; t < 2; ++t)
-      mean[t] = sum[t][g] / n[t], se2[t] = (sum2[t][g] - n[t] * mean[t] * mean[t]) / (n[t] - 1) / n[t];
-    const double combined = std::sqrt(se2[0] + se2[1]);
-    std::printf("region %d: solver %.5f, light tracer %.5f, combined SE %.5f (%.2f %%): %.2f SEs\n", g,
-                mean[0], mean[1], combined, 100 * combined / mean[1], (mean[0] - mean[1]) / combined);
-    EXPECT_NEAR(mean[0], mean[1], kT7 * combined) << "region " << g;
+    const auto [mean, se] = mean_and_se(solver_means[g]);
+    const auto [lt_mean, lt_se] = mean_and_se(lt_means[g]);
+    const double combined = std::sqrt(se * se + lt_se * lt_se);
+    std::printf("region %d: solver %.5f, light tracer %.5f, combined SE %.5f (%.2f %%): %.2f SEs\n", g, mean,
+                lt_mean, combined, 100 * combined / lt_mean, (mean - lt_mean) / combined);
+    EXPECT_NEAR(mean, lt_mean, kT7 * combined) << "region " << g;
     // The test must be able to see the bias of merging every time: 6 % of the mean.
-    EXPECT_LT(kT7 * combined, 0.04 * mean[1]) << "region " << g;
+    EXPECT_LT(kT7 * combined, 0.04 * lt_mean) << "region " << g;
   }
 }
 
