@@ -4,12 +4,9 @@
 // sweep leaves the boxes of its keys, and a translation); a still scene reports none.
 #include <gtest/gtest.h>
 
-#include <memory>
 #include <random>
 
-#include "abi/host_services.hpp"
-#include "scene/scene_parser.hpp"
-#include "world/world.hpp"
+#include "query_world.hpp"
 
 namespace nimbus {
 namespace moving_bounds_test {
@@ -37,34 +34,19 @@ lights:
 )";
 }
 
-struct Scene {
-  SceneDesc desc;
-  std::unique_ptr<World> world;
-  std::unique_ptr<HostServices> services;
-  const nimbus_host_scene_query_v1_t *query = nullptr;
-
-  explicit Scene(const std::string &text) {
-    auto d = parse_scene_string(text, "moving.yaml");
-    EXPECT_TRUE(d.ok()) << d.error().message;
-    desc = std::move(d.value());
-    auto w = World::build(desc, desc.render.filter);
-    EXPECT_TRUE(w.ok()) << w.error().message;
-    world = std::move(w.value());
-    services = std::make_unique<HostServices>(world.get());
-    query = static_cast<const nimbus_host_scene_query_v1_t *>(
-        services->host()->get_service(services->host(), NIMBUS_SERVICE_SCENE_QUERY, 1));
-  }
-  std::vector<nimbus_object_bounds_t> bounds() const {
-    std::vector<nimbus_object_bounds_t> b(query->moving_bounds(services->host(), nullptr, 0));
-    EXPECT_EQ(query->moving_bounds(services->host(), b.data(), uint32_t(b.size())), b.size());
-    return b;
-  }
-};
+// The moving objects' records, through the scene query.
+std::vector<nimbus_object_bounds_t> moving_bounds(const QueryWorld &w) {
+  if (!w.query) return {};
+  std::vector<nimbus_object_bounds_t> b(w.query->moving_bounds(w.host(), nullptr, 0));
+  EXPECT_EQ(w.query->moving_bounds(w.host(), b.data(), uint32_t(b.size())), b.size());
+  return b;
+}
 
 TEST(MovingBounds, EveryHitOfAMovingObjectAtAnyTimeLiesInsideItsBounds) {
-  const Scene s(scene(", shutter: { open: 0, close: 1 }"));
+  const QueryWorld s(scene(", shutter: { open: 0, close: 1 }"));
+  ASSERT_TRUE(s.query);
   ASSERT_TRUE(NIMBUS_HAS_MEMBER(s.query, nimbus_host_scene_query_v1_t, moving_bounds));
-  const std::vector<nimbus_object_bounds_t> b = s.bounds();
+  const std::vector<nimbus_object_bounds_t> b = moving_bounds(s);
   ASSERT_EQ(b.size(), 2u) << "the spinning box and the sliding ball";
   const uint32_t moving_id[2] = {1, 3};
   const Vec3f aim[2] = {Vec3f(1, 0.1f, 0.65f), Vec3f(-0.75f, -0.6f, 0.3f)};
@@ -103,20 +85,21 @@ TEST(MovingBounds, EveryHitOfAMovingObjectAtAnyTimeLiesInsideItsBounds) {
 }
 
 TEST(MovingBounds, CountIsReturnedWhateverTheCapacity) {
-  const Scene s(scene(", shutter: { open: 0, close: 1 }"));
+  const QueryWorld s(scene(", shutter: { open: 0, close: 1 }"));
+  ASSERT_TRUE(s.query);
   nimbus_object_bounds_t one{};
-  EXPECT_EQ(s.query->moving_bounds(s.services->host(), &one, 1), 2u);
+  EXPECT_EQ(s.query->moving_bounds(s.host(), &one, 1), 2u);
   EXPECT_GT(one.radius, 0.7f);
 }
 
 TEST(MovingBounds, AStillSceneHasNone) {
-  const Scene s(R"(
+  const QueryWorld s(R"(
 camera: { position: [0, -6, 2], look_at: [0, 0, 0.5], shutter: { open: 0, close: 1 } }
 materials: { white: { type: diffuse } }
 objects: [ { shape: sphere, radius: 1, material: white } ]
 lights: [ { type: point, position: [0, 0, 3], intensity: [1, 1, 1] } ]
 )");
-  EXPECT_EQ(s.bounds().size(), 0u);
+  EXPECT_EQ(moving_bounds(s).size(), 0u);
 }
 
 }  // namespace moving_bounds_test

@@ -4,11 +4,8 @@
 // and the sphere; the count is returned whatever the capacity.
 #include <gtest/gtest.h>
 
-#include <memory>
 
-#include "abi/host_services.hpp"
-#include "scene/scene_parser.hpp"
-#include "world/world.hpp"
+#include "query_world.hpp"
 
 namespace nimbus {
 namespace sharp_bounds_test {
@@ -34,27 +31,16 @@ lights:
 class SharpBounds : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto desc = parse_scene_string(kScene, "sharp.yaml");
-    ASSERT_TRUE(desc.ok()) << desc.error().message;
-    desc_ = std::move(desc.value());
-    auto world = World::build(desc_, desc_.render.filter);
-    ASSERT_TRUE(world.ok()) << world.error().message;
-    world_ = std::move(world.value());
-    services_ = std::make_unique<HostServices>(world_.get());
-    scene_ = static_cast<const nimbus_host_scene_query_v1_t *>(
-        services_->host()->get_service(services_->host(), NIMBUS_SERVICE_SCENE_QUERY, 1));
-    ASSERT_TRUE(NIMBUS_HAS_MEMBER(scene_, nimbus_host_scene_query_v1_t, sharp_bounds));
+    ASSERT_TRUE(w_.query);
+    ASSERT_TRUE(NIMBUS_HAS_MEMBER(w_.query, nimbus_host_scene_query_v1_t, sharp_bounds));
   }
   std::vector<nimbus_object_bounds_t> bounds(float alpha_max) const {
-    std::vector<nimbus_object_bounds_t> b(scene_->sharp_bounds(services_->host(), alpha_max, nullptr, 0));
-    EXPECT_EQ(scene_->sharp_bounds(services_->host(), alpha_max, b.data(), uint32_t(b.size())), b.size());
+    std::vector<nimbus_object_bounds_t> b(w_.query->sharp_bounds(w_.host(), alpha_max, nullptr, 0));
+    EXPECT_EQ(w_.query->sharp_bounds(w_.host(), alpha_max, b.data(), uint32_t(b.size())), b.size());
     return b;
   }
 
-  SceneDesc desc_;
-  std::unique_ptr<World> world_;
-  std::unique_ptr<HostServices> services_;
-  const nimbus_host_scene_query_v1_t *scene_ = nullptr;
+  QueryWorld w_{kScene};
 };
 
 TEST_F(SharpBounds, GlassMirrorsAndSmoothMetalsOnly) {
@@ -69,7 +55,7 @@ TEST_F(SharpBounds, GlassMirrorsAndSmoothMetalsOnly) {
   EXPECT_EQ(bounds(1.0f).size(), 4u) << "every non-diffuse object below alpha 1";
   // The mirror box: its 8 corners inside the box and the sphere.
   const nimbus_object_bounds_t &m = b[1];
-  const MeshData &mesh = desc_.shapes[2].mesh;
+  const MeshData &mesh = w_.desc.shapes[2].mesh;
   ASSERT_FALSE(mesh.positions.empty());
   for (const Vec3f &p : mesh.positions) {
     for (int k = 0; k < 3; ++k) {
@@ -83,9 +69,9 @@ TEST_F(SharpBounds, GlassMirrorsAndSmoothMetalsOnly) {
 
 TEST_F(SharpBounds, CountIsReturnedWhateverTheCapacity) {
   nimbus_object_bounds_t one{};
-  EXPECT_EQ(scene_->sharp_bounds(services_->host(), 0.1f, &one, 1), 3u);
+  EXPECT_EQ(w_.query->sharp_bounds(w_.host(), 0.1f, &one, 1), 3u);
   EXPECT_FLOAT_EQ(one.radius, 0.5f);
-  EXPECT_EQ(scene_->sharp_bounds(services_->host(), 0.1f, nullptr, 0), 3u);
+  EXPECT_EQ(w_.query->sharp_bounds(w_.host(), 0.1f, nullptr, 0), 3u);
 }
 
 TEST(SharpBoundsScene, DiffuseSceneHasNone) {
