@@ -53,13 +53,9 @@ float sphere_cone_one_minus_cos(float radius, float dist) {
   return sin2 / (1 + safe_sqrt(1 - sin2));
 }
 
-// Whether s is a sphere and p lies outside it, with p's distance to its centre (computed for spheres
-// only: the square root is on every light sample's path; 0 otherwise).
 bool outside_sphere(const ShapeRecord &s, const Vec3f &p, float &dist) {
-  dist = 0;
-  if (s.type != ShapeType::Sphere) return false;
   dist = length(s.center - p);
-  return dist > s.radius * 1.0001f;
+  return s.type == ShapeType::Sphere && dist > s.radius * 1.0001f;
 }
 
 bool emits_towards(const AreaLight &a, const Vec3f &n, const Vec3f &w) {
@@ -80,8 +76,8 @@ void area_sample_incident(const AreaLight &a, const GeometryScene &geo, const Ve
     const Frame f = Frame::from_normal((s.center - p) / dc);
     const float cos_theta = 1 - u[0] * omc;
     const float sin_theta = safe_sqrt(1 - cos_theta * cos_theta);
-    const Vec2f cs = cos_sin_turn(u[1]);
-    const Vec3f w = f.to_world({sin_theta * cs.x, sin_theta * cs.y, cos_theta});
+    const float phi = 2 * kPi * u[1];
+    const Vec3f w = f.to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta});
     // Nearest intersection of p + t w with the sphere (tangent rays clamp to the tangent point).
     const float b = dot(w, s.center - p);
     const float t = b - safe_sqrt(sqr(s.radius) - (dc * dc - b * b));

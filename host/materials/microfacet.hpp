@@ -7,7 +7,6 @@
 #pragma once
 
 #include <nimbus/cpp/math.hpp>
-#include <nimbus/cpp/sampling.hpp>
 #include "materials/local_frame.hpp"
 
 namespace nimbus {
@@ -76,10 +75,9 @@ class TrowbridgeReitz {
     const float len2 = sqr(wh.x) + sqr(wh.y);
     const Vec3f t1 = len2 > 0 ? Vec3f(-wh.y, wh.x, 0) / std::sqrt(len2) : Vec3f(1, 0, 0);
     const Vec3f t2 = cross(wh, t1);
-    const float r = std::sqrt(u.x);
-    const Vec2f cs = cos_sin_turn(u.y);
-    const float px = r * cs.x;
-    float py = r * cs.y;
+    const float r = std::sqrt(u.x), phi = 2 * kPi * u.y;
+    const float px = r * std::cos(phi);
+    float py = r * std::sin(phi);
     const float s = (1 + wh.z) / 2;
     py = (1 - s) * safe_sqrt(1 - px * px) + s * py;
     const float pz = safe_sqrt(1 - px * px - py * py);

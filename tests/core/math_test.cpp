@@ -1,7 +1,6 @@
 // core/math.hpp: atan2_fast (environment lookups) against libm's atan2 in double, over every octant,
 // the axes, signed zeros and magnitudes from denormal to huge; next_float against std::nextafter;
-// cos_sin_quarter (the concentric disk mapping's angle, sampling.hpp) and cos_sin_turn (azimuths) against
-// cos and sin in double.
+// cos_sin_quarter (the concentric disk mapping's angle, sampling.hpp) against cos and sin in double.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -106,28 +105,6 @@ TEST(CosSinQuarter, WithinOneAndAHalfUlpsOverAQuarterTurn) {
       ASSERT_NEAR(d.x, r * std::cos(theta), 4e-7) << u0 << " " << u1;
       ASSERT_NEAR(d.y, r * std::sin(theta), 4e-7) << u0 << " " << u1;
     }
-}
-
-// Within 2 ulps of cos(2 pi u) and sin(2 pi u) (of the larger of the two, where one crosses zero; libm on
-// the float product 2 pi u is off by up to 7, from that product's rounding),
-// exact at the quarter turns.
-TEST(CosSinTurn, WithinTwoUlpsOverAWholeTurn) {
-  double worst = 0;
-  const int n = 1 << 20;
-  for (int i = 0; i <= n; ++i) {
-    const float u = float(i) / n;
-    const Vec2f cs = cos_sin_turn(u);
-    const double c = std::cos(2 * M_PI * double(u)), s = std::sin(2 * M_PI * double(u));
-    const double ulp = std::nextafter(float(std::max(std::abs(c), std::abs(s))), kInfinity) -
-                       float(std::max(std::abs(c), std::abs(s)));
-    worst = std::max({worst, std::abs(cs.x - c) / ulp, std::abs(cs.y - s) / ulp});
-  }
-  EXPECT_LT(worst, 2.0);
-  const float quarters[5][3] = {{0, 1, 0}, {0.25f, 0, 1}, {0.5f, -1, 0}, {0.75f, 0, -1}, {1, 1, 0}};
-  for (const auto &q : quarters) {
-    EXPECT_EQ(cos_sin_turn(q[0]).x, q[1]) << q[0];
-    EXPECT_EQ(cos_sin_turn(q[0]).y, q[2]) << q[0];
-  }
 }
 
 }  // namespace math_test

@@ -19,24 +19,6 @@ inline Vec2f cos_sin_quarter(float a) {
   return {c, s};
 }
 
-// cos and sin of 2 pi u for u in [0, 1]: the nearest quarter turn exactly (a swap and signs), the rest,
-// within an eighth of a turn, by cos_sin_quarter.
-inline Vec2f cos_sin_turn(float u) {
-  const float t = 4 * u;  // quarter turns, exact
-  const int quarter = int(t + 0.5f);
-  const Vec2f cs = cos_sin_quarter((t - float(quarter)) * (kPi / 2));
-  switch (quarter & 3) {
-    case 0:
-      return {cs.x, cs.y};
-    case 1:
-      return {-cs.y, cs.x};
-    case 2:
-      return {-cs.x, -cs.y};
-    default:
-      return {cs.y, -cs.x};
-  }
-}
-
 // Concentric (Shirley-Chiu) mapping of [0,1)^2 onto the unit disk. The angle of the second pair of
 // sectors, pi/2 - phi, is taken as (sin phi, cos phi): both branches evaluate an angle within pi/4.
 inline Vec2f sample_uniform_disk_concentric(float u0, float u1) {
@@ -79,8 +61,8 @@ inline float cosine_hemisphere_pdf(float cos_theta) { return std::max(cos_theta,
 inline Vec3f sample_uniform_sphere(float u0, float u1) {
   const float z = 1.0f - 2.0f * u0;
   const float r = safe_sqrt(1.0f - z * z);
-  const Vec2f cs = cos_sin_turn(u1);
-  return {r * cs.x, r * cs.y, z};
+  const float phi = 2.0f * kPi * u1;
+  return {r * std::cos(phi), r * std::sin(phi), z};
 }
 inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
 
@@ -90,8 +72,8 @@ inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
 inline Vec3f sample_uniform_cone_narrow(float u0, float u1, float one_minus_cos) {
   const float t = u0 * one_minus_cos;  // 1 - cos(theta), uniform in [0, one_minus_cos)
   const float sin_theta = safe_sqrt(t * (2.0f - t));
-  const Vec2f cs = cos_sin_turn(u1);
-  return {cs.x * sin_theta, cs.y * sin_theta, 1.0f - t};
+  const float phi = u1 * 2.0f * kPi;
+  return {std::cos(phi) * sin_theta, std::sin(phi) * sin_theta, 1.0f - t};
 }
 inline float uniform_cone_pdf_narrow(float one_minus_cos) { return 1.0f / (2.0f * kPi * one_minus_cos); }
 
