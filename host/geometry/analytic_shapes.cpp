@@ -30,16 +30,15 @@ double hit_distance(const ShapeRecord &s, const double org[3], const double dir[
                     double tfar) {
   if (s.type == ShapeType::Sphere) {
     // Solve |o + t d - c|^2 = r^2 with the numerically stable form (pbrt-v4 / Ray Tracing Gems ch. 7):
-    // discriminant from the perpendicular distance avoids cancellation for large distances.
+    // discriminant from the perpendicular distance avoids cancellation for large distances. That
+    // distance squared times a is |oc x d|^2, which needs no division: a miss returns before any.
     const double oc[3] = {org[0] - s.center.x, org[1] - s.center.y, org[2] - s.center.z};
     const double a = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
     const double b = oc[0] * dir[0] + oc[1] * dir[1] + oc[2] * dir[2];  // half of the usual b
     const double r = s.radius;
-    // |oc - (b/a) d|^2: squared distance from the centre to the line.
-    double f[3];
-    for (int i = 0; i < 3; ++i) f[i] = oc[i] - (b / a) * dir[i];
-    const double perp2 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
-    const double disc = a * (r * r - perp2);
+    const double cx = oc[1] * dir[2] - oc[2] * dir[1], cy = oc[2] * dir[0] - oc[0] * dir[2],
+                 cz = oc[0] * dir[1] - oc[1] * dir[0];
+    const double disc = a * (r * r) - (cx * cx + cy * cy + cz * cz);
     if (disc < 0) return -1;
     const double root = std::sqrt(disc);
     const double q = (b > 0) ? -(b + root) : -(b - root);
