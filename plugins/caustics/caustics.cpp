@@ -149,8 +149,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     pending_used_.clear();
     if (paths > 0) {
       const auto t0 = std::chrono::steady_clock::now();
-      // The last map's uniform paths and whether lookups used them adapt the light selection (spec 6.1).
-      // So do they the emission map's densities (photon_emission: adaptive-map).
+      // The last map's uniform paths and whether lookups used them adapt the light selection (spec 6.1)
+      // and the emission map's densities (photon_emission: adaptive-map).
       EmissionMap &map = emitters_.emission_map();
       pass_.path_use().for_each([&](uint32_t light, uint32_t cell, bool uniform, bool used) {
         if (uniform) emission_selection_.count(light, used), map.count(cell, used);

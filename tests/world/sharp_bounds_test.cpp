@@ -4,7 +4,6 @@
 // and the sphere; the count is returned whatever the capacity.
 #include <gtest/gtest.h>
 
-
 #include "query_world.hpp"
 
 namespace nimbus {

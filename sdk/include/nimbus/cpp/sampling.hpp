@@ -8,9 +8,8 @@
 
 namespace nimbus {
 
-// cos and sin of an angle in [-pi/4, pi/4]: Cephes' minimax polynomials for that interval (within an ulp
-// or two of libm's), inline, where a libm sincosf call with its range reduction for any argument was
-// the largest single cost of sampling a diffuse bounce.
+// cos and sin of an angle in [-pi/4, pi/4]: Cephes' minimax polynomials for that interval, within 1.5 ulps,
+// inline: libm's sincosf reduces arguments of any size and costs more than the rest of a diffuse sample.
 inline Vec2f cos_sin_quarter(float a) {
   const float z = a * a;
   const float c = 1.0f - 0.5f * z +
