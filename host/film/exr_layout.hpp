@@ -1,22 +1,21 @@
-// How Nimbus lays out a multi-layer EXR in memory before writing it: the OIIO spec (channel names,
+// How Nimbus lays out a multi-layer EXR in memory before writing it: the description (channel names,
 // compression, "nimbus:<key>" metadata) and the interleaved float pixels. Film::write_exr,
 // write_layered_exr and the partial EXR's first part (partial_exr.hpp) share it, so they agree exactly.
 #pragma once
-
-#include <OpenImageIO/imageio.h>
 
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/expected.hpp"
+#include "core/image_io.hpp"
 #include "film/film.hpp"
 
 namespace nimbus {
 
 struct ExrImage {
-  OIIO::ImageSpec spec;
-  std::vector<float> pixels;  // spec.nchannels per pixel, interleaved, scanlines top down
+  ImageDesc desc;
+  std::vector<float> pixels;  // desc.channels.size() per pixel, interleaved, scanlines top down
 };
 
 // Beauty is the unnamed layer (R, G, B, layer ""), so every viewer shows it by default; other elements follow

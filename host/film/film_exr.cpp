@@ -11,14 +11,16 @@
 
 namespace nimbus {
 namespace {
-void add_number(OIIO::ImageSpec &spec, const std::string &name, double value) {
+ImageAttribute number_attribute(const std::string &name, double value) {
   // EXR has no 64-bit integer attribute: int32 covers counts, seeds and sizes, and a double holds any
   // larger count (up to 2^53) or fractional value exactly, where a float attribute would round.
-  if (std::isfinite(value) && value == std::trunc(value) && value >= INT_MIN && value <= INT_MAX) {
-    spec.attribute(name, static_cast<int>(value));
-  } else {
-    spec.attribute(name, OIIO::TypeDesc::DOUBLE, &value);
-  }
+  ImageAttribute a;
+  a.name = name;
+  a.number = value;
+  const bool int32 =
+      std::isfinite(value) && value == std::trunc(value) && value >= INT_MIN && value <= INT_MAX;
+  a.kind = int32 ? ImageAttribute::Kind::Int : ImageAttribute::Kind::Double;
+  return a;
 }
 
 }  // namespace
@@ -51,15 +53,13 @@ ExrImage layered_exr_image(uint32_t width, uint32_t height, const std::vector<Ex
     first += c;
   }
 
-  OIIO::ImageSpec &spec = image.spec;
-  spec = OIIO::ImageSpec(static_cast<int>(width), static_cast<int>(height), static_cast<int>(total),
-                         OIIO::TypeDesc::FLOAT);
-  spec.channelnames = names;
-  spec.alpha_channel = -1;
-  spec.attribute("compression", "zip");
-  spec.attribute("Software", "Nimbus " NIMBUS_VERSION_STRING);
-  for (const auto &[key, value] : string_meta) spec.attribute("nimbus:" + key, value);
-  for (const auto &[key, value] : numeric_meta) add_number(spec, "nimbus:" + key, value);
+  image.desc = image_desc(width, height, std::move(names), PixelType::Float);
+  std::vector<ImageAttribute> &attributes = image.desc.attributes;
+  attributes.push_back(text_attribute("compression", "zip"));
+  attributes.push_back(text_attribute("Software", "Nimbus " NIMBUS_VERSION_STRING));
+  for (const auto &[key, value] : string_meta) attributes.push_back(text_attribute("nimbus:" + key, value));
+  for (const auto &[key, value] : numeric_meta)
+    attributes.push_back(number_attribute("nimbus:" + key, value));
   return image;
 }
 
@@ -80,7 +80,8 @@ ExrImage film_exr_image(const Film &film, const std::vector<std::pair<std::strin
 
 Status write_exr_image(const std::string &path, const ExrImage &image) {
   return write_atomically(path, [&](const std::string &tmp) {
-    return write_oiio_image("openexr", tmp, image.spec, image.pixels.data());
+    const ImagePart part{image.desc, image.pixels.data()};
+    return write_image_file("openexr", tmp, {&part, 1});
   });
 }
 

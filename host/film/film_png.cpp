@@ -1,6 +1,4 @@
 // Film::write_png: the beauty as a display-referred 8-bit preview; write_display_png: any RGB image, as one.
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -27,10 +25,11 @@ Status write_display_png(const std::string &path, std::vector<float> rgb, uint32
     const float v = std::isnan(rgb[i]) ? 0.0f : std::clamp(rgb[i], 0.0f, 1.0f);
     bytes[i] = static_cast<uint8_t>(std::lround(v * 255.0f));
   }
-  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("Software", "Nimbus " NIMBUS_VERSION_STRING);
-  return write_atomically(
-      path, [&](const std::string &tmp) { return write_oiio_image("png", tmp, spec, bytes.data()); });
+  ImagePart png{image_desc(width, height, {"R", "G", "B"}, PixelType::UInt8), bytes.data()};
+  png.desc.attributes.push_back(text_attribute("Software", "Nimbus " NIMBUS_VERSION_STRING));
+  return write_atomically(path, [&](const std::string &tmp) {
+    return write_image_file("png", tmp, {&png, 1});
+  });
 }
 
 }  // namespace nimbus

@@ -1,7 +1,5 @@
 #include "film/image_compare.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -138,11 +136,12 @@ Status write_error_heatmap(const std::string &path, const std::vector<float> &er
     }
     std::copy(colour.begin(), colour.end(), &rgb[p * 3]);
   }
-  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("Software", "Nimbus " NIMBUS_VERSION_STRING);
-  spec.attribute("Description", heatmap_legend(scale));
-  return write_atomically(
-      path, [&](const std::string &tmp) { return write_oiio_image("png", tmp, spec, rgb.data()); });
+  ImagePart png{image_desc(width, height, {"R", "G", "B"}, PixelType::UInt8), rgb.data()};
+  png.desc.attributes.push_back(text_attribute("Software", "Nimbus " NIMBUS_VERSION_STRING));
+  png.desc.attributes.push_back(text_attribute("Description", heatmap_legend(scale)));
+  return write_atomically(path, [&](const std::string &tmp) {
+    return write_image_file("png", tmp, {&png, 1});
+  });
 }
 
 std::string heatmap_legend(const HeatmapScale &scale) {

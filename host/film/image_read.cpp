@@ -1,11 +1,10 @@
 #include "film/image_read.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <array>
 
 #include "core/image_header.hpp"
+#include "core/image_io.hpp"
 #include "core/limits.hpp"
 #include "core/one_line.hpp"
 
@@ -30,68 +29,31 @@ std::pair<std::string, std::string> split_channel(const std::string &name) {
   return {name.substr(0, dot), name.substr(dot + 1)};
 }
 
-void read_attribute(const OIIO::ParamValue &p, ImageLayers &out) {
-  const OIIO::TypeDesc t = p.type();
-  if (t == OIIO::TypeString) {
-    out.strings[p.name().string()] = p.get<OIIO::ustring>().string();
-    return;
+void read_attributes(const ImageDesc &desc, ImageLayers &out) {
+  for (const ImageAttribute &a : desc.attributes) {
+    if (a.kind == ImageAttribute::Kind::String)
+      out.strings[a.name] = a.text;
+    else
+      out.numbers[a.name] = a.number;
   }
-  if (t.aggregate != OIIO::TypeDesc::SCALAR || t.arraylen != 0 || p.nvalues() != 1) return;
-  double v;
-  switch (t.basetype) {
-    case OIIO::TypeDesc::INT8:
-      v = p.get<int8_t>();
-      break;
-    case OIIO::TypeDesc::UINT8:
-      v = p.get<uint8_t>();
-      break;
-    case OIIO::TypeDesc::INT16:
-      v = p.get<int16_t>();
-      break;
-    case OIIO::TypeDesc::UINT16:
-      v = p.get<uint16_t>();
-      break;
-    case OIIO::TypeDesc::INT32:
-      v = p.get<int32_t>();
-      break;
-    case OIIO::TypeDesc::UINT32:
-      v = p.get<uint32_t>();
-      break;
-    case OIIO::TypeDesc::INT64:
-      v = static_cast<double>(p.get<int64_t>());
-      break;
-    case OIIO::TypeDesc::UINT64:
-      v = static_cast<double>(p.get<uint64_t>());
-      break;
-    case OIIO::TypeDesc::HALF:
-      v = p.get_float();
-      break;
-    case OIIO::TypeDesc::FLOAT:
-      v = p.get<float>();
-      break;
-    case OIIO::TypeDesc::DOUBLE:
-      v = p.get<double>();
-      break;
-    default:
-      return;
-  }
-  out.numbers[p.name().string()] = v;
 }
 
 // The file opened at its first part, whose size has been checked.
-Expected<std::unique_ptr<OIIO::ImageInput>> open_exr(const std::string &path) {
+Expected<std::unique_ptr<ImageFile>> open_exr(const std::string &path) {
   if (auto problem = image_header_problem(path)) return Error{"cannot read '" + path + "': " + *problem};
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return Error{"cannot read '" + path + "': " + one_line(OIIO::geterror())};
-  const OIIO::ImageSpec &spec = in->spec();
-  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
+  const Expected<const ImageIo *> io = image_io();
+  if (!io) return Error{"cannot read '" + path + "': " + io.error().message};
+  auto in = (*io)->open(path);
+  if (!in) return Error{"cannot read '" + path + "': " + one_line(in.error().message)};
+  const ImageDesc &spec = (*in)->desc();
+  if (spec.width < 1 || spec.height < 1 || spec.channels.empty())
     return Error{"cannot read '" + path + "': no pixels"};
   if (spec.width > kMaxResolution || spec.height > kMaxResolution) {
     return Error{"cannot read '" + path + "': " + std::to_string(spec.width) + "x" +
                  std::to_string(spec.height) + " pixels, more than Nimbus renders (" +
                  std::to_string(kMaxResolution) + " per side)"};
   }
-  return in;
+  return std::move(*in);
 }
 
 }  // namespace
@@ -99,36 +61,31 @@ Expected<std::unique_ptr<OIIO::ImageInput>> open_exr(const std::string &path) {
 Expected<ImageLayers> read_exr_header(const std::string &path) {
   auto opened = open_exr(path);
   if (!opened) return opened.error();
-  const OIIO::ImageSpec &spec = opened.value()->spec();
+  const ImageDesc &spec = opened.value()->desc();
   ImageLayers out;
   out.width = uint32_t(spec.width), out.height = uint32_t(spec.height);
-  for (const OIIO::ParamValue &p : spec.extra_attribs) read_attribute(p, out);
+  read_attributes(spec, out);
   return out;
 }
 
 Expected<ImageLayers> read_exr_layers(const std::string &path) {
   auto opened = open_exr(path);
   if (!opened) return opened.error();
-  std::unique_ptr<OIIO::ImageInput> &in = opened.value();
-  const OIIO::ImageSpec &spec = in->spec();
+  ImageFile &in = *opened.value();
+  const ImageDesc &spec = in.desc();
   const size_t width = static_cast<size_t>(spec.width), height = static_cast<size_t>(spec.height);
-  const size_t n = static_cast<size_t>(spec.nchannels);
+  const size_t n = spec.channels.size();
   // A band of rows at a time, so that memory follows the pixels the file really holds: its header alone
   // may claim any size, and a damaged file must fail at its first missing rows.
-  // Tiled files are read in whole rows of tiles (OpenImageIO reads no scanlines from them).
+  // Tiled files are read in whole rows of tiles.
   const int64_t tile_rows = spec.tile_width > 0 ? std::max(1, spec.tile_height) : 1;
   const int64_t band_rows = std::max<int64_t>(1, int64_t(kBandValues / (width * n)) / tile_rows) * tile_rows;
   std::vector<float> pixels, band;
   for (int64_t y = 0; y < spec.height; y += band_rows) {
     const int64_t rows = std::min(band_rows, spec.height - y);
     band.resize(size_t(rows) * width * n);
-    const int first = int(spec.y + y), end = int(spec.y + y + rows);
-    const bool read = spec.tile_width > 0
-                          ? in->read_tiles(0, 0, spec.x, spec.x + spec.width, first, end, spec.z, spec.z + 1,
-                                           0, spec.nchannels, OIIO::TypeDesc::FLOAT, band.data())
-                          : in->read_scanlines(0, 0, first, end, spec.z, 0, spec.nchannels,
-                                               OIIO::TypeDesc::FLOAT, band.data());
-    if (!read) return Error{"cannot read '" + path + "': " + one_line(in->geterror())};
+    if (!in.read_rows(int(spec.y + y), int(spec.y + y + rows), PixelType::Float, band.data()))
+      return Error{"cannot read '" + path + "': " + one_line(in.error())};
     pixels.insert(pixels.end(), band.begin(), band.end());
   }
 
@@ -139,7 +96,7 @@ Expected<ImageLayers> read_exr_layers(const std::string &path) {
   for (size_t c = 0; c < n; ++c) {
     std::vector<float> plane(count);
     for (size_t p = 0; p < count; ++p) plane[p] = pixels[p * n + c];
-    out.channels[spec.channel_name(static_cast<int>(c))] = std::move(plane);
+    out.channels[spec.channels[c]] = std::move(plane);
   }
 
   std::map<std::string, std::vector<std::string>> grouped;
@@ -157,8 +114,7 @@ Expected<ImageLayers> read_exr_layers(const std::string &path) {
     }
   }
 
-  for (const OIIO::ParamValue &p : spec.extra_attribs) read_attribute(p, out);
-  in->close();
+  read_attributes(spec, out);
   return out;
 }
 

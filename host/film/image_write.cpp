@@ -2,19 +2,26 @@
 
 namespace nimbus {
 
-Status write_oiio_image(const std::string &format, const std::string &file, const OIIO::ImageSpec &spec,
-                        const void *pixels) {
-  auto out = OIIO::ImageOutput::create(format);
-  if (!out) return Error{"OpenImageIO has no '" + format + "' writer: " + OIIO::geterror()};
-  // Every failure branch fetches the pending message: OIIO complains at exit about unread errors.
-  if (!out->open(file, spec)) return Error{out->geterror()};
-  if (!out->write_image(spec.format, pixels)) {
-    const std::string reason = out->geterror();
-    out->close();
-    return Error{reason};
-  }
-  if (!out->close()) return Error{out->geterror()};
-  return Ok{};
+Status write_image_file(const std::string &format, const std::string &file,
+                        std::span<const ImagePart> parts) {
+  const Expected<const ImageIo *> io = image_io();
+  if (!io) return io.error();
+  return (*io)->write(format, file, parts);
+}
+
+ImageDesc image_desc(uint32_t width, uint32_t height, std::vector<std::string> channels, PixelType type) {
+  ImageDesc desc;
+  desc.width = int(width), desc.height = int(height);
+  desc.channels = std::move(channels);
+  desc.type = type;
+  return desc;
+}
+
+ImageAttribute text_attribute(std::string name, std::string text) {
+  ImageAttribute a;
+  a.name = std::move(name);
+  a.text = std::move(text);
+  return a;
 }
 
 }  // namespace nimbus

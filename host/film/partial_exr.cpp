@@ -1,13 +1,12 @@
 #include "film/partial_exr.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cstring>
 
 #include "core/one_line.hpp"
 #include "film/atomic_file.hpp"
 #include "film/exr_layout.hpp"
 #include "film/image_read.hpp"
+#include "film/image_write.hpp"
 
 namespace nimbus {
 namespace {
@@ -46,24 +45,6 @@ SumChannels sum_channels(const Film &film) {
   return out;
 }
 
-Status write_two_parts(const std::string &file, const ExrImage &image, const OIIO::ImageSpec &sums_spec,
-                       const std::vector<uint32_t> &words) {
-  auto out = OIIO::ImageOutput::create("openexr");
-  if (!out) return Error{"OpenImageIO has no 'openexr' writer: " + OIIO::geterror()};
-  const OIIO::ImageSpec specs[2] = {image.spec, sums_spec};
-  if (!out->open(file, 2, specs)) return Error{out->geterror()};
-  const bool written = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) &&
-                       out->open(file, sums_spec, OIIO::ImageOutput::AppendSubimage) &&
-                       out->write_image(OIIO::TypeDesc::UINT, words.data());
-  if (!written) {
-    const std::string reason = out->geterror();
-    out->close();
-    return Error{reason};
-  }
-  if (!out->close()) return Error{out->geterror()};
-  return Ok{};
-}
-
 // The element a channel belongs to, as part 0's reader names layers ("beauty" for R, G, B).
 std::string element_of(const std::string &channel) {
   const size_t dot = channel.rfind('.');
@@ -77,13 +58,11 @@ Status write_partial_exr(const Film &film, const std::string &path,
                          const std::vector<std::pair<std::string, double>> &numeric_meta) {
   const ExrImage image = film_exr_image(film, string_meta, numeric_meta);
   const SumChannels sums = sum_channels(film);
-  OIIO::ImageSpec spec(int(film.width()), int(film.height()), int(sums.names.size()), OIIO::TypeDesc::UINT);
-  spec.channelnames = sums.names;
-  spec.alpha_channel = -1;
-  spec.attribute("compression", "zip");
-  spec.attribute("name", kSumsPartName);
-  return write_atomically(
-      path, [&](const std::string &tmp) { return write_two_parts(tmp, image, spec, sums.words); });
+  ImageDesc sums_desc = image_desc(film.width(), film.height(), sums.names, PixelType::UInt32);
+  sums_desc.attributes = {text_attribute("compression", "zip"), text_attribute("name", kSumsPartName)};
+  const ImagePart parts[2] = {{image.desc, image.pixels.data()}, {std::move(sums_desc), sums.words.data()}};
+  return write_atomically(path,
+                          [&](const std::string &tmp) { return write_image_file("openexr", tmp, parts); });
 }
 
 Expected<PartialImage> read_partial_exr(const std::string &path) {
@@ -97,34 +76,35 @@ Expected<PartialImage> read_partial_exr(const std::string &path) {
     if (key.rfind("nimbus:", 0) == 0) out.numbers[key.substr(7)] = value;
 
   const auto fail = [&](const std::string &why) { return Error{"cannot read '" + path + "': " + why}; };
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return fail(one_line(OIIO::geterror()));
-  if (!in->seek_subimage(1, 0)) {
-    (void)in->geterror();
+  const Expected<const ImageIo *> io = image_io();
+  if (!io) return fail(io.error().message);
+  auto opened = (*io)->open(path);
+  if (!opened) return fail(one_line(opened.error().message));
+  ImageFile &in = **opened;
+  if (!in.seek_part(1))
     return fail("no part '" + std::string(kSumsPartName) + "': not a partial render of nimbus render --task");
-  }
-  const OIIO::ImageSpec spec = in->spec();
+  const ImageDesc &spec = in.desc();
   if (spec.width != int(out.width) || spec.height != int(out.height) || spec.x != 0 || spec.y != 0)
     return fail("its sums part is not the size of its image");
-  const size_t n = size_t(spec.nchannels), pixels = size_t(out.width) * out.height;
+  const size_t n = spec.channels.size(), pixels = size_t(out.width) * out.height;
   // Channels pair up as <channel>.lo, <channel>.hi, in whatever order the file stores them.
   std::map<std::string, size_t> low, high;        // image channel name -> index of its word in the sums part
   std::map<std::string, uint32_t> channel_count;  // element -> its channels
-  for (int c = 0; c < spec.nchannels; ++c) {
-    const std::string name = spec.channel_name(c);
+  for (size_t c = 0; c < n; ++c) {
+    const std::string &name = spec.channels[c];
     const bool is_low = name.size() > 3 && name.compare(name.size() - 3, 3, kLow) == 0;
     const bool is_high = name.size() > 3 && name.compare(name.size() - 3, 3, kHigh) == 0;
     if (!is_low && !is_high) return fail("unexpected sums channel '" + name + "'");
     const std::string channel = name.substr(0, name.size() - 3);
-    if (!(is_low ? low : high).emplace(channel, size_t(c)).second)
+    if (!(is_low ? low : high).emplace(channel, c).second)
       return fail("sums channel '" + name + "' appears twice");
     if (is_low) ++channel_count[element_of(channel)];
   }
   if (high.size() != low.size()) return fail("its '.lo' and '.hi' sums channels do not pair up");
   if (!channel_count.count("beauty")) return fail("no beauty sums");
   std::vector<uint32_t> words(pixels * n);
-  if (!in->read_image(1, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT, words.data()))
-    return fail(one_line(in->geterror()));
+  if (!in.read_rows(spec.y, spec.y + spec.height, PixelType::UInt32, words.data()))
+    return fail(one_line(in.error()));
   // Beauty first, then the other elements by name (merge matches them by name).
   std::vector<std::string> order = {"beauty"};
   for (const auto &[element, count] : channel_count)

@@ -1,7 +1,6 @@
-// Reading lat-long environment images through OpenImageIO (EXR, HDR, PNG, JPEG...).
-#include <OpenImageIO/imageio.h>
-
+// Reading lat-long environment images through the image I/O module (EXR, HDR, PNG, JPEG...).
 #include "core/image_header.hpp"
+#include "core/image_io.hpp"
 #include "core/limits.hpp"
 #include "lights/light_set.hpp"
 
@@ -10,25 +9,28 @@ namespace nimbus {
 Expected<EnvironmentLight> load_environment_map(const std::string &path) {
   if (auto problem = image_header_problem(path))
     return Error{path + ": cannot read environment map: " + *problem};
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) {
-    std::string reason = OIIO::geterror();
-    if (reason.empty()) reason = "cannot open";
-    return Error{path + ": cannot read environment map: " + reason};
+  const Expected<const ImageIo *> io = image_io();
+  if (!io) return Error{path + ": cannot read environment map: " + io.error().message};
+  auto opened = (*io)->open(path);
+  if (!opened) {
+    const std::string &reason = opened.error().message;
+    return Error{path + ": cannot read environment map: " + (reason.empty() ? "cannot open" : reason)};
   }
-  const OIIO::ImageSpec &spec = in->spec();
-  if (spec.width < 2 || spec.height < 1 || spec.nchannels < 1)
+  ImageFile &in = **opened;
+  const ImageDesc &spec = in.desc();
+  const int channels = int(spec.channels.size());
+  if (spec.width < 2 || spec.height < 1 || channels < 1)
     return Error{path + ": environment map has no pixels"};
   if (std::string big = oversized_input_image(spec.width, spec.height); !big.empty())
     return Error{path + ": cannot read environment map: " + big};
-  std::vector<float> pixels(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    return Error{path + ": cannot read environment map: " + in->geterror()};
+  std::vector<float> pixels(size_t(spec.width) * spec.height * channels);
+  if (!in.read_rows(spec.y, spec.y + spec.height, PixelType::Float, pixels.data()))
+    return Error{path + ": cannot read environment map: " + in.error()};
   EnvironmentLight env;
   env.width = uint32_t(spec.width);
   env.height = uint32_t(spec.height);
   env.map.resize(size_t(env.width) * env.height);
-  const int c = spec.nchannels;
+  const int c = channels;
   for (size_t i = 0; i < env.map.size(); ++i) {
     const float *p = &pixels[i * c];
     Rgb v = c >= 3 ? Rgb{p[0], p[1], p[2]} : Rgb(p[0]);

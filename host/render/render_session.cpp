@@ -12,6 +12,7 @@
 #include "abi/host_services.hpp"
 #include "abi/run_state.hpp"
 #include "core/denormals.hpp"
+#include "core/image_io.hpp"
 #include "loader/plugin_registry.hpp"
 #include "loader/plugin_status.hpp"
 #include "render/bind_plugins.hpp"
@@ -129,6 +130,9 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   const auto resolved = resolve_job(desc, options);
   if (!resolved) return resolved.error();
   const RenderJob &job = resolved.value();
+  // The render ends by writing its images: without the module that writes them it must fail now, not
+  // after its work.
+  if (const Expected<const ImageIo *> io = image_io(); !io) return io.error();
   auto built = World::build(desc, job.filter);
   if (!built) return built.error();
   const World &world = *built.value();

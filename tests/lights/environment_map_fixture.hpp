@@ -3,13 +3,13 @@
 
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <unistd.h>
+
+#include "film/image_write.hpp"
 
 namespace nimbus::testing {
 
@@ -26,10 +26,9 @@ inline std::string write_environment_map(const std::string &name) {
       for (int c = 0; c < 3; ++c)
         px[(size_t(y) * w + x) * 3 + c] =
             0.2f + 0.5f * float(x) / w + 0.1f * float(c) + (y == 9 && x / 2 == 20 ? 2e3f : 0);
-  auto out = OIIO::ImageOutput::create(path);
-  EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)) &&
-              out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
-  if (out) out->close();
+  const ImagePart image{image_desc(w, h, {"R", "G", "B"}, PixelType::Float), px.data()};
+  const Status written = write_image_file("openexr", path, {&image, 1});
+  EXPECT_TRUE(written) << written.error().message;
   return path;
 }
 

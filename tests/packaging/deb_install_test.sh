@@ -51,7 +51,9 @@ nimbus=$root/usr/bin/nimbus
 
 step "stripped binaries, debug information in the dbgsym package"
 debug_files=$(dpkg-deb --contents "$ddeb" | awk '{print $6}')
-plugins=("$root"/usr/lib/nimbus/plugins/*.so "$root"/usr/lib/*/nimbus/plugins/*.so)
+# The plugins and the image I/O module (OpenImageIO, loaded when the first image is read or written).
+plugins=("$root"/usr/lib/nimbus/plugins/*.so "$root"/usr/lib/*/nimbus/plugins/*.so "$root"/usr/lib/nimbus/host/*.so
+  "$root"/usr/lib/*/nimbus/host/*.so)
 for bin in "$nimbus" "${plugins[@]}"; do
   [[ -e $bin ]] || continue
   file -b "$bin" | grep -q ", stripped" || fail "$bin is not stripped: $(file -b "$bin")"

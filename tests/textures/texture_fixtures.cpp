@@ -1,8 +1,9 @@
 #include "texture_fixtures.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
+
+#include "film/image_write.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -11,15 +12,20 @@ namespace nimbus::texture_test {
 
 namespace {
 
-void write_image(const std::string &path, int width, int height, int channels, OIIO::TypeDesc type,
-                 const void *pixels) {
-  auto out = OIIO::ImageOutput::create(path);
-  ASSERT_TRUE(out) << OIIO::geterror();
-  OIIO::ImageSpec spec(width, height, channels, type);
-  spec.attribute("oiio:UnassociatedAlpha", 1);  // write colour as given, not divided by alpha
-  ASSERT_TRUE(out->open(path, spec)) << out->geterror();
-  ASSERT_TRUE(out->write_image(type, pixels)) << out->geterror();
-  ASSERT_TRUE(out->close()) << out->geterror();
+// Through the image I/O module: these files are the texture reader's input, not its output.
+void write_image(const std::string &format, const std::string &path, int width, int height, int channels,
+                 PixelType type, const void *pixels) {
+  static const std::vector<std::string> names = {"R", "G", "B", "A"};
+  std::vector<std::string> channel_names = {"Y"};
+  if (channels > 1) channel_names.assign(names.begin(), names.begin() + channels);
+  ImagePart image{image_desc(uint32_t(width), uint32_t(height), channel_names, type), pixels};
+  ImageAttribute unassociated;  // write colour as given, not divided by alpha
+  unassociated.name = "oiio:UnassociatedAlpha";
+  unassociated.kind = ImageAttribute::Kind::Int;
+  unassociated.number = 1;
+  image.desc.attributes.push_back(unassociated);
+  const Status written = write_image_file(format, path, {&image, 1});
+  ASSERT_TRUE(written) << written.error().message;
 }
 
 }  // namespace
@@ -40,13 +46,13 @@ ScratchDir::~ScratchDir() {
 void write_png8(const std::string &path, int width, int height, int channels,
                 const std::vector<uint8_t> &pixels) {
   ASSERT_EQ(pixels.size(), size_t(width) * height * channels);
-  write_image(path, width, height, channels, OIIO::TypeDesc::UINT8, pixels.data());
+  write_image("png", path, width, height, channels, PixelType::UInt8, pixels.data());
 }
 
 void write_exr(const std::string &path, int width, int height, int channels,
                const std::vector<float> &pixels) {
   ASSERT_EQ(pixels.size(), size_t(width) * height * channels);
-  write_image(path, width, height, channels, OIIO::TypeDesc::FLOAT, pixels.data());
+  write_image("openexr", path, width, height, channels, PixelType::Float, pixels.data());
 }
 
 void write_text(const std::string &path, const std::string &text) {
