@@ -45,7 +45,7 @@ Expected<const ImageIo *> load() {
       return Error{"cannot load the image I/O module '" + path + "': " + why};
     };
     // Never closed: OpenImageIO keeps process-wide state until exit.
-    void *library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    void *library = dlopen(path.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (!library) return fail(dlerror());
     const auto entry = reinterpret_cast<ImageIoEntry>(dlsym(library, NIMBUS_IMAGE_IO_ENTRY));
     if (!entry) return fail("no " NIMBUS_IMAGE_IO_ENTRY " function");
