@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config ccache git file
-  libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
+  libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libpng-dev libopencolorio-dev
   libyaml-cpp-dev libosd-dev libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev
   libtinyobjloader-dev libtinygltf-dev
   python3 python3-numpy python3-matplotlib clang-format

@@ -1,12 +1,13 @@
-// Image files through OpenImageIO, which lives in a module of its own (lib/nimbus/host/libnimbus_image_io.so)
-// that the host loads when it first reads or writes an image: OpenImageIO links ~260 libraries whose
-// loading and relocation take 0.2 s, which every command and test process that touches no image would
-// otherwise pay at start-up. The interface is internal to the host (C++, built with it), not the plugin ABI.
+// Image files read through OpenImageIO (textures, environment maps, EXRs back), which lives in a module of
+// its own (lib/nimbus/host/libnimbus_image_io.so) that the host loads when it first reads one: OpenImageIO
+// links ~260 libraries whose loading and relocation take 0.2 s, which every command and test process would
+// otherwise pay at start-up. The film writes its EXRs and PNGs with OpenEXR and libpng directly
+// (film/exr_write.hpp, film/png_write.hpp), from the records below. The interface is internal to the host
+// (C++, built with it), not the plugin ABI.
 #pragma once
 
 #include <cstdint>
 #include <memory>
-#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,6 +46,24 @@ struct ImageDesc {
     return nullptr;
   }
 };
+
+// An image description of `width` x `height` pixels with these channels.
+inline ImageDesc image_desc(uint32_t width, uint32_t height, std::vector<std::string> channels,
+                            PixelType type) {
+  ImageDesc desc;
+  desc.width = int(width), desc.height = int(height);
+  desc.channels = std::move(channels);
+  desc.type = type;
+  return desc;
+}
+
+// A string attribute.
+inline ImageAttribute text_attribute(std::string name, std::string text) {
+  ImageAttribute a;
+  a.name = std::move(name);
+  a.text = std::move(text);
+  return a;
+}
 
 // An image to write: `pixels` holds desc.channels.size() values of desc.type per pixel, interleaved,
 // scanlines top down. Borrowed for the call.
@@ -93,11 +112,6 @@ class TextureCache {
 
 class ImageIo {
  public:
-  // Writes `parts` (one, or several for a multi-part EXR) to `file` with the OpenImageIO writer named
-  // `format` ("openexr", "png"); explicit because temporary files have no image extension. The error is
-  // the library's text.
-  virtual Status write(const std::string &format, const std::string &file,
-                       std::span<const ImagePart> parts) const = 0;
   // Opens `path`; the error is the library's text (empty when it gave none).
   virtual Expected<std::unique_ptr<ImageFile>> open(const std::string &path) const = 0;
   virtual const TextureCache &textures() const = 0;

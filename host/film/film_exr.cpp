@@ -5,9 +5,10 @@
 #include <climits>
 #include <cmath>
 
+#include "core/image_io.hpp"
 #include "film/atomic_file.hpp"
+#include "film/exr_write.hpp"
 #include "film/film.hpp"
-#include "film/image_write.hpp"
 
 namespace nimbus {
 namespace {
@@ -81,7 +82,7 @@ ExrImage film_exr_image(const Film &film, const std::vector<std::pair<std::strin
 Status write_exr_image(const std::string &path, const ExrImage &image) {
   return write_atomically(path, [&](const std::string &tmp) {
     const ImagePart part{image.desc, image.pixels.data()};
-    return write_image_file("openexr", tmp, {&part, 1});
+    return write_exr_file(tmp, {&part, 1});
   });
 }
 

@@ -3,10 +3,11 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/image_io.hpp"
 #include "film/atomic_file.hpp"
 #include "film/display_transform.hpp"
 #include "film/film.hpp"
-#include "film/image_write.hpp"
+#include "film/png_write.hpp"
 
 namespace nimbus {
 
@@ -27,9 +28,8 @@ Status write_display_png(const std::string &path, std::vector<float> rgb, uint32
   }
   ImagePart png{image_desc(width, height, {"R", "G", "B"}, PixelType::UInt8), bytes.data()};
   png.desc.attributes.push_back(text_attribute("Software", "Nimbus " NIMBUS_VERSION_STRING));
-  return write_atomically(path, [&](const std::string &tmp) {
-    return write_image_file("png", tmp, {&png, 1});
-  });
+  return write_atomically(path,
+                          [&](const std::string &tmp) { return write_png_file(tmp, png.desc, png.pixels); });
 }
 
 }  // namespace nimbus

@@ -6,8 +6,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/image_io.hpp"
 #include "film/atomic_file.hpp"
-#include "film/image_write.hpp"
+#include "film/png_write.hpp"
 
 namespace nimbus {
 namespace {
@@ -139,9 +140,8 @@ Status write_error_heatmap(const std::string &path, const std::vector<float> &er
   ImagePart png{image_desc(width, height, {"R", "G", "B"}, PixelType::UInt8), rgb.data()};
   png.desc.attributes.push_back(text_attribute("Software", "Nimbus " NIMBUS_VERSION_STRING));
   png.desc.attributes.push_back(text_attribute("Description", heatmap_legend(scale)));
-  return write_atomically(path, [&](const std::string &tmp) {
-    return write_image_file("png", tmp, {&png, 1});
-  });
+  return write_atomically(path,
+                          [&](const std::string &tmp) { return write_png_file(tmp, png.desc, png.pixels); });
 }
 
 std::string heatmap_legend(const HeatmapScale &scale) {

@@ -2,11 +2,12 @@
 
 #include <cstring>
 
+#include "core/image_io.hpp"
 #include "core/one_line.hpp"
 #include "film/atomic_file.hpp"
 #include "film/exr_layout.hpp"
+#include "film/exr_write.hpp"
 #include "film/image_read.hpp"
-#include "film/image_write.hpp"
 
 namespace nimbus {
 namespace {
@@ -61,8 +62,7 @@ Status write_partial_exr(const Film &film, const std::string &path,
   ImageDesc sums_desc = image_desc(film.width(), film.height(), sums.names, PixelType::UInt32);
   sums_desc.attributes = {text_attribute("compression", "zip"), text_attribute("name", kSumsPartName)};
   const ImagePart parts[2] = {{image.desc, image.pixels.data()}, {std::move(sums_desc), sums.words.data()}};
-  return write_atomically(path,
-                          [&](const std::string &tmp) { return write_image_file("openexr", tmp, parts); });
+  return write_atomically(path, [&](const std::string &tmp) { return write_exr_file(tmp, parts); });
 }
 
 Expected<PartialImage> read_partial_exr(const std::string &path) {

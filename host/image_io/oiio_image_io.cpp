@@ -1,7 +1,6 @@
 // The image I/O module (core/image_io.hpp): files read and written through OpenImageIO.
 #include <OpenImageIO/imageio.h>
 
-#include <algorithm>
 #include <cstring>
 
 #include "core/image_io.hpp"
@@ -10,26 +9,6 @@
 
 namespace nimbus {
 namespace {
-
-OIIO::ImageSpec spec_of(const ImageDesc &desc) {
-  OIIO::ImageSpec spec(desc.width, desc.height, int(desc.channels.size()), type_desc(desc.type));
-  spec.channelnames = desc.channels;
-  // A channel named A is alpha, as in OpenImageIO's own default names (R, G, B, A).
-  const auto alpha = std::find(desc.channels.begin(), desc.channels.end(), "A");
-  spec.alpha_channel = alpha == desc.channels.end() ? -1 : int(alpha - desc.channels.begin());
-  for (const ImageAttribute &a : desc.attributes) switch (a.kind) {
-      case ImageAttribute::Kind::String:
-        spec.attribute(a.name, a.text);
-        break;
-      case ImageAttribute::Kind::Int:
-        spec.attribute(a.name, int(a.number));
-        break;
-      case ImageAttribute::Kind::Double:
-        spec.attribute(a.name, OIIO::TypeDesc::DOUBLE, &a.number);
-        break;
-    }
-  return spec;
-}
 
 class OiioImageFile final : public ImageFile {
  public:
@@ -70,29 +49,6 @@ class OiioImageFile final : public ImageFile {
 
 class OiioImageIo final : public ImageIo {
  public:
-  Status write(const std::string &format, const std::string &file,
-               std::span<const ImagePart> parts) const override {
-    auto out = OIIO::ImageOutput::create(format);
-    if (!out) return Error{"OpenImageIO has no '" + format + "' writer: " + OIIO::geterror()};
-    std::vector<OIIO::ImageSpec> specs;
-    for (const ImagePart &part : parts) specs.push_back(spec_of(part.desc));
-    // Every failure branch fetches the pending message: OIIO complains at exit about unread errors.
-    const bool opened =
-        specs.size() == 1 ? out->open(file, specs[0]) : out->open(file, int(specs.size()), specs.data());
-    if (!opened) return Error{out->geterror()};
-    for (size_t i = 0; i < parts.size(); ++i) {
-      const bool written = (i == 0 || out->open(file, specs[i], OIIO::ImageOutput::AppendSubimage)) &&
-                           out->write_image(specs[i].format, parts[i].pixels);
-      if (!written) {
-        const std::string reason = out->geterror();
-        out->close();
-        return Error{reason};
-      }
-    }
-    if (!out->close()) return Error{out->geterror()};
-    return Ok{};
-  }
-
   Expected<std::unique_ptr<ImageFile>> open(const std::string &path) const override {
     auto in = OIIO::ImageInput::open(path);
     if (!in) return Error{OIIO::geterror()};

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <future>
 #include <memory>
 #include <mutex>
 
@@ -13,7 +12,6 @@
 #include "abi/host_services.hpp"
 #include "abi/run_state.hpp"
 #include "core/denormals.hpp"
-#include "core/image_io.hpp"
 #include "loader/plugin_registry.hpp"
 #include "loader/plugin_status.hpp"
 #include "render/bind_plugins.hpp"
@@ -131,9 +129,6 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
   const auto resolved = resolve_job(desc, options);
   if (!resolved) return resolved.error();
   const RenderJob &job = resolved.value();
-  // The module that writes the images (0.2 s to load its libraries) loads while the world builds and the
-  // plugins prepare; the render waits for it, and fails without it, before its first iteration.
-  std::future<Expected<const ImageIo *>> image_module = std::async(std::launch::async, image_io);
   auto built = World::build(desc, job.filter);
   if (!built) return built.error();
   const World &world = *built.value();
@@ -163,8 +158,6 @@ Expected<RenderResult> render(const SceneDesc &desc, const RenderOptions &option
                              run.lightmix_elements);
       !s)
     return s.error();
-
-  if (const Expected<const ImageIo *> io = image_module.get(); !io) return io.error();
 
   // Restore the sums before the first iteration, or warn before replacing someone's work.
   RenderCheckpoint checkpoint(job, plugins.integrator.id(), plugins.sampler.id(), plugins.guide.id(),

@@ -1,6 +1,7 @@
 // The CLI without its image I/O module (core/image_io.hpp): a copy of the executable in a prefix that
-// has the build's plugins but no lib/nimbus/host/. Commands that touch no image still work; a render
-// fails before it starts, naming the module and why, and leaves no file behind.
+// has the build's plugins but no lib/nimbus/host/. Commands that read no image still work, renders
+// included (the film writes with OpenEXR and libpng); one that reads an image fails, naming the module and
+// why, and a render that would read one fails before its first iteration, leaving no file behind.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -28,20 +29,46 @@ std::string install_without_module(const fs::path &prefix) {
   return (prefix / "bin" / "nimbus").string();
 }
 
-TEST(ImageIoModule, MissingModuleFailsARenderBeforeItStarts) {
+// The box scene with the forest's environment map as its sky.
+std::string scene_with_environment_map(const TestDir &dir) {
+  const std::string path = dir.file("sky.yaml");
+  std::ifstream box(scene("box.yaml"));
+  std::ofstream(path) << box.rdbuf() << "environment: { map: " << NIMBUS_SHIPPED_SCENES
+                      << "/caustics/assets/forest.exr }\n";
+  return path;
+}
+
+TEST(ImageIoModule, RendersWithoutItUntilAnImageIsRead) {
   TestDir dir;
   const std::string nimbus = install_without_module(dir.path() / "prefix");
   const ProcessResult version = run_process({nimbus, "--version"}, dir.path());
   EXPECT_TRUE(exited_with(version, 0)) << version.describe();
+  // The film writes its EXR and PNG with OpenEXR and libpng: no module needed.
+  const ProcessResult plain =
+      run_process({nimbus, "render", scene("box.yaml"), "--iterations", "1", "-q", "-o", dir.file("box.exr")},
+                  dir.path());
+  EXPECT_TRUE(exited_with(plain, 0)) << plain.describe();
+  EXPECT_TRUE(fs::exists(dir.file("box.exr")) && fs::exists(dir.file("box.png")));
 
-  const ProcessResult r = run_process(
-      {nimbus, "render", scene("box.yaml"), "--iterations", "1", "-o", dir.file("x.exr")}, dir.path());
-  EXPECT_TRUE(exited_with(r, 1)) << r.describe();
-  EXPECT_TRUE(contains(r.err, "cannot find the image I/O module libnimbus_image_io.so")) << r.err;
-  EXPECT_TRUE(contains(r.err, (dir.path() / "prefix" / "lib" / "nimbus" / "host").string())) << r.err;
-  EXPECT_FALSE(fs::exists(dir.file("x.exr")));
-  EXPECT_FALSE(fs::exists(dir.file("x.png")));
-  EXPECT_FALSE(fs::exists(dir.file("x.exr.ckpt")));
+  // An environment map is read through the module: the render fails as it builds the scene, before any
+  // iteration, naming the map, the module and where it was looked for.
+  const ProcessResult sky = run_process(
+      {nimbus, "render", scene_with_environment_map(dir), "--iterations", "1", "-o", dir.file("sky.exr")},
+      dir.path());
+  EXPECT_TRUE(exited_with(sky, 1)) << sky.describe();
+  EXPECT_TRUE(contains(sky.err,
+                       "forest.exr: cannot read environment map: cannot find the image I/O module "
+                       "libnimbus_image_io.so"))
+      << sky.err;
+  EXPECT_TRUE(contains(sky.err, (dir.path() / "prefix" / "lib" / "nimbus" / "host").string())) << sky.err;
+  EXPECT_FALSE(fs::exists(dir.file("sky.exr")));
+  EXPECT_FALSE(fs::exists(dir.file("sky.exr.ckpt")));
+
+  // Reading an EXR back (compare) needs it too.
+  const ProcessResult compare =
+      run_process({nimbus, "compare", dir.file("box.exr"), dir.file("box.exr")}, dir.path());
+  EXPECT_TRUE(compare.exited && compare.exit_code != 0) << compare.describe();
+  EXPECT_TRUE(contains(compare.err, "cannot find the image I/O module")) << compare.err;
 }
 
 TEST(ImageIoModule, DamagedModuleIsNamedWithTheLoadersReason) {
@@ -52,7 +79,8 @@ TEST(ImageIoModule, DamagedModuleIsNamedWithTheLoadersReason) {
   std::ofstream(module) << std::string(256, '#');  // longer than an ELF header, so dlopen reads one
 
   const ProcessResult r = run_process(
-      {nimbus, "render", scene("box.yaml"), "--iterations", "1", "-o", dir.file("x.exr")}, dir.path());
+      {nimbus, "render", scene_with_environment_map(dir), "--iterations", "1", "-o", dir.file("x.exr")},
+      dir.path());
   EXPECT_TRUE(exited_with(r, 1)) << r.describe();
   EXPECT_TRUE(contains(r.err, "cannot load the image I/O module '" + module.string() + "'")) << r.err;
   EXPECT_TRUE(contains(r.err, "invalid ELF header")) << r.err;  // dlopen's reason

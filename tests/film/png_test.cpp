@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "film/film.hpp"
+#include "film/png_write.hpp"
 #include "scratch_dir.hpp"
 
 namespace nimbus {
@@ -28,8 +29,11 @@ std::unique_ptr<Film> grey_ramp(const std::vector<float> &values) {
   return film;
 }
 
+// The bytes as stored: OpenImageIO would otherwise multiply colour by alpha as it reads.
 std::vector<uint8_t> read_png(const std::string &path, OIIO::ImageSpec &spec) {
-  auto in = OIIO::ImageInput::open(path);
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
   EXPECT_TRUE(in) << OIIO::geterror();
   if (!in) return {};
   spec = in->spec();
@@ -51,6 +55,7 @@ TEST(FilmPng, DisplayTransformEncodesSrgb) {
   const std::vector<uint8_t> px = read_png(path, spec);
   EXPECT_EQ(spec.nchannels, 3);
   EXPECT_EQ(spec.format, OIIO::TypeDesc::UINT8);
+  EXPECT_EQ(spec.get_string_attribute("Software"), "Nimbus " NIMBUS_VERSION_STRING);
   ASSERT_EQ(px.size(), 6u * 3u);
   for (int c = 0; c < 3; ++c) {
     EXPECT_EQ(px[0 * 3 + c], 118) << "0.18 linear is sRGB 117.65";
@@ -144,6 +149,30 @@ TEST_F(OcioEnv, BuildTreeCopyIsFoundNextToTheExecutable) {
   ScratchDir dir;
   const Status status = grey_ramp({0.18f})->write_png(dir.file("d.png"), found);
   EXPECT_TRUE(status.ok()) << status.error().message;
+}
+
+// libpng's writer, read back by OpenImageIO: every channel count, bytes as given (alpha not applied),
+// text attributes as tEXt chunks; a file that cannot be created is an error with the system's reason.
+TEST(PngWrite, EveryChannelCountRoundTripsThroughAnIndependentReader) {
+  ScratchDir dir;
+  for (int channels = 1; channels <= 4; ++channels) {
+    std::vector<uint8_t> bytes;
+    for (int i = 0; i < 3 * 2 * channels; ++i) bytes.push_back(uint8_t(i * 37 % 256));  // alpha 0 included
+    const std::vector<std::string> names = {"R", "G", "B", "A"};
+    ImageDesc desc = image_desc(3, 2, {names.begin(), names.begin() + channels}, PixelType::UInt8);
+    desc.attributes.push_back(text_attribute("Description", "channels " + std::to_string(channels)));
+    const std::string path = dir.file("c" + std::to_string(channels) + ".png");
+    const Status written = write_png_file(path, desc, bytes.data());
+    ASSERT_TRUE(written.ok()) << written.error().message;
+    OIIO::ImageSpec spec;
+    EXPECT_EQ(read_png(path, spec), bytes) << channels << " channels";
+    EXPECT_EQ(spec.nchannels, channels);
+    EXPECT_EQ(spec.get_string_attribute("ImageDescription"), "channels " + std::to_string(channels));
+  }
+  const Status missing =
+      write_png_file(dir.file("no-such-dir/x.png"), image_desc(1, 1, {"Y"}, PixelType::UInt8), "\x7f");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_EQ(missing.error().message, "No such file or directory");
 }
 
 }  // namespace png_test

@@ -9,7 +9,8 @@
 
 #include <unistd.h>
 
-#include "film/image_write.hpp"
+#include "core/image_io.hpp"
+#include "film/exr_write.hpp"
 
 namespace nimbus::testing {
 
@@ -27,7 +28,7 @@ inline std::string write_environment_map(const std::string &name) {
         px[(size_t(y) * w + x) * 3 + c] =
             0.2f + 0.5f * float(x) / w + 0.1f * float(c) + (y == 9 && x / 2 == 20 ? 2e3f : 0);
   const ImagePart image{image_desc(w, h, {"R", "G", "B"}, PixelType::Float), px.data()};
-  const Status written = write_image_file("openexr", path, {&image, 1});
+  const Status written = write_exr_file(path, {&image, 1});
   EXPECT_TRUE(written) << written.error().message;
   return path;
 }

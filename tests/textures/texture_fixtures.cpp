@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
-#include "film/image_write.hpp"
+#include "core/image_io.hpp"
+#include "film/exr_write.hpp"
+#include "film/png_write.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -12,19 +14,15 @@ namespace nimbus::texture_test {
 
 namespace {
 
-// Through the image I/O module: these files are the texture reader's input, not its output.
+// With the film's writers: these files are the texture reader's input, not its output.
 void write_image(const std::string &format, const std::string &path, int width, int height, int channels,
                  PixelType type, const void *pixels) {
   static const std::vector<std::string> names = {"R", "G", "B", "A"};
   std::vector<std::string> channel_names = {"Y"};
   if (channels > 1) channel_names.assign(names.begin(), names.begin() + channels);
   ImagePart image{image_desc(uint32_t(width), uint32_t(height), channel_names, type), pixels};
-  ImageAttribute unassociated;  // write colour as given, not divided by alpha
-  unassociated.name = "oiio:UnassociatedAlpha";
-  unassociated.kind = ImageAttribute::Kind::Int;
-  unassociated.number = 1;
-  image.desc.attributes.push_back(unassociated);
-  const Status written = write_image_file(format, path, {&image, 1});
+  const Status written =
+      format == "png" ? write_png_file(path, image.desc, pixels) : write_exr_file(path, {&image, 1});
   ASSERT_TRUE(written) << written.error().message;
 }
 
