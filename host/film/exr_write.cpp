@@ -34,12 +34,14 @@ Expected<Imf::Compression> compression_named(const std::string &name) {
   return Error{"unknown EXR compression '" + name + "'"};
 }
 
+Imf::PixelType exr_type(PixelType type) { return type == PixelType::UInt32 ? Imf::UINT : Imf::FLOAT; }
+
 Expected<Imf::Header> header_of(const ImageDesc &desc, size_t index, bool multi_part) {
   if (desc.type == PixelType::UInt8) return Error{"EXR has no 8-bit channels"};
   Imf::Header header(desc.width, desc.height);
   header.compression() = Imf::ZIP_COMPRESSION;
-  const Imf::PixelType type = desc.type == PixelType::UInt32 ? Imf::UINT : Imf::FLOAT;
-  for (const std::string &name : desc.channels) header.channels().insert(name, Imf::Channel(type));
+  for (const std::string &name : desc.channels)
+    header.channels().insert(name, Imf::Channel(exr_type(desc.type)));
   std::string part_name = "part" + std::to_string(index);
   for (const ImageAttribute &a : desc.attributes) {
     if (a.name == "compression") {
@@ -67,12 +69,11 @@ Expected<Imf::Header> header_of(const ImageDesc &desc, size_t index, bool multi_
 // * 4.
 Imf::FrameBuffer frame_buffer(const ImagePart &part) {
   const ImageDesc &d = part.desc;
-  const Imf::PixelType type = d.type == PixelType::UInt32 ? Imf::UINT : Imf::FLOAT;
   const size_t pixel = d.channels.size() * 4, row = pixel * size_t(d.width);
   char *base = const_cast<char *>(static_cast<const char *>(part.pixels));  // OpenEXR only reads it
   Imf::FrameBuffer fb;
   for (size_t c = 0; c < d.channels.size(); ++c)
-    fb.insert(d.channels[c], Imf::Slice(type, base + 4 * c, pixel, row));
+    fb.insert(d.channels[c], Imf::Slice(exr_type(d.type), base + 4 * c, pixel, row));
   return fb;
 }
 

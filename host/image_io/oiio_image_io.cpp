@@ -1,4 +1,4 @@
-// The image I/O module (core/image_io.hpp): files read and written through OpenImageIO.
+// The image I/O module (core/image_io.hpp): image files read through OpenImageIO.
 #include <OpenImageIO/imageio.h>
 
 #include <cstring>
