@@ -49,7 +49,10 @@ Status write_png_file(const std::string &file, const ImageDesc &desc, const void
     std::fclose(f);
     return Error{"out of memory"};
   }
+  errno = 0;  // so that a failed write's errno is its own
   if (setjmp(png_jmpbuf(png))) {
+    // libpng says only "Write Error" when fwrite fails (a full disk): the system says why.
+    if (errno != 0) reason += std::string(": ") + std::strerror(errno);
     png_destroy_write_struct(&png, &info);
     std::fclose(f);
     return Error{reason};

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <random>
 
+#include "film/exr_write.hpp"
 #include "film/film.hpp"
 #include "film/image_read.hpp"
 #include "scratch_dir.hpp"
@@ -174,6 +175,25 @@ TEST(FilmExr, RenameOntoADirectoryFailsAndCleansUp) {
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.error().message.find(path), std::string::npos) << status.error().message;
   EXPECT_EQ(dir.entries(), std::vector<std::string>{"taken"});
+}
+
+// OpenEXR's writer on a full disk, and on what EXR cannot hold: errors with the reason, no exception.
+TEST(ExrWrite, FullDiskAndEightBitChannelsAreErrors) {
+  std::vector<float> noise(256 * 256 * 3);
+  std::mt19937 rng(3);
+  for (float &v : noise) v = std::uniform_real_distribution<float>(0, 1)(rng);  // incompressible
+  const ImagePart part{image_desc(256, 256, {"R", "G", "B"}, PixelType::Float), noise.data()};
+  const Status full = write_exr_file("/dev/full", {&part, 1});
+  ASSERT_FALSE(full.ok());
+  EXPECT_NE(full.error().message.find("No space left on device"), std::string::npos) << full.error().message;
+  EXPECT_EQ(full.error().message.find('\n'), std::string::npos) << full.error().message;
+
+  const uint8_t byte = 0;
+  const ImagePart bytes{image_desc(1, 1, {"Y"}, PixelType::UInt8), &byte};
+  ScratchDir dir;
+  const Status refused = write_exr_file(dir.file("x.exr"), {&bytes, 1});
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().message, "EXR has no 8-bit channels");
 }
 
 TEST(FilmExr, ReadingAMissingFileIsAnError) {

@@ -173,6 +173,17 @@ TEST(PngWrite, EveryChannelCountRoundTripsThroughAnIndependentReader) {
       write_png_file(dir.file("no-such-dir/x.png"), image_desc(1, 1, {"Y"}, PixelType::UInt8), "\x7f");
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.error().message, "No such file or directory");
+  // A full disk, whether libpng's fwrite (a large image) or the final flush (a small one) finds it.
+  for (const uint32_t side : {1u, 512u}) {
+    std::vector<uint8_t> grey(size_t(side) * side);
+    uint32_t state = 1;
+    for (uint8_t &g : grey) g = uint8_t((state = state * 1664525u + 1013904223u) >> 24);  // incompressible
+    const Status full =
+        write_png_file("/dev/full", image_desc(side, side, {"Y"}, PixelType::UInt8), grey.data());
+    ASSERT_FALSE(full.ok()) << side;
+    EXPECT_NE(full.error().message.find("No space left on device"), std::string::npos)
+        << full.error().message;
+  }
 }
 
 }  // namespace png_test
