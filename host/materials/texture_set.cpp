@@ -127,8 +127,12 @@ struct TextureSet::Impl {
     const int c_n = tex.channels;
     float texels[4 * 3];  // (0, 0), (1, 0), (0, 1), (1, 1), c_n channels each
     const bool inside = bx + 1 < float(tex.width) && by + 1 < float(tex.height);
-    if (!inside || !cache->texels(tex.handle, tex.x + int(bx), tex.x + int(bx) + 2, tex.y + int(by),
-                                  tex.y + int(by) + 2, 0, 1, c_n, texels)) {
+    const bool read = inside && cache->texels(tex.handle, tex.x + int(bx), tex.x + int(bx) + 2,
+                                              tex.y + int(by), tex.y + int(by) + 2, 0, 1, c_n, texels);
+    // A failed read inside the image (the file changed under us) drops its message, so that the
+    // per-thread error strings cannot grow without bound.
+    if (inside && !read) (void)cache->error();
+    if (!read) {
       for (int k = 0; k < 4; ++k)
         fetch(tex, true, (x0 + float(k & 1) + 0.5f) / float(tex.width),
               (y0 + float(k >> 1) + 0.5f) / float(tex.height), &texels[k * c_n]);
