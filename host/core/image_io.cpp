@@ -38,7 +38,8 @@ std::vector<fs::path> module_candidates() {
 
 Expected<const ImageIo *> load() {
   std::error_code ec;
-  for (const fs::path &candidate : module_candidates()) {
+  const std::vector<fs::path> candidates = module_candidates();
+  for (const fs::path &candidate : candidates) {
     if (!fs::is_regular_file(candidate, ec)) continue;
     const std::string path = candidate.lexically_normal().string();
     const auto fail = [&](const std::string &why) {
@@ -54,8 +55,7 @@ Expected<const ImageIo *> load() {
     return io;
   }
   std::string looked;
-  for (const fs::path &candidate : module_candidates())
-    looked += (looked.empty() ? "" : ", ") + candidate.string();
+  for (const fs::path &candidate : candidates) looked += (looked.empty() ? "" : ", ") + candidate.string();
   return Error{std::string("cannot find the image I/O module ") + kModuleFile + " (looked for " + looked +
                ")"};
 }
@@ -65,6 +65,12 @@ Expected<const ImageIo *> load() {
 Expected<const ImageIo *> image_io() {
   static const Expected<const ImageIo *> loaded = load();
   return loaded;
+}
+
+Expected<std::unique_ptr<ImageFile>> open_image_file(const std::string &path) {
+  const Expected<const ImageIo *> io = image_io();
+  if (!io) return io.error();
+  return (*io)->open(path);
 }
 
 }  // namespace nimbus

@@ -28,8 +28,7 @@ Status write_display_png(const std::string &path, std::vector<float> rgb, uint32
   }
   ImagePart png{image_desc(width, height, {"R", "G", "B"}, PixelType::UInt8), bytes.data()};
   png.desc.attributes.push_back(text_attribute("Software", "Nimbus " NIMBUS_VERSION_STRING));
-  return write_atomically(path,
-                          [&](const std::string &tmp) { return write_png_file(tmp, png.desc, png.pixels); });
+  return write_atomically(path, [&](const std::string &tmp) { return write_png_file(tmp, png); });
 }
 
 }  // namespace nimbus

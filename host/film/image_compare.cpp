@@ -140,8 +140,7 @@ Status write_error_heatmap(const std::string &path, const std::vector<float> &er
   ImagePart png{image_desc(width, height, {"R", "G", "B"}, PixelType::UInt8), rgb.data()};
   png.desc.attributes.push_back(text_attribute("Software", "Nimbus " NIMBUS_VERSION_STRING));
   png.desc.attributes.push_back(text_attribute("Description", heatmap_legend(scale)));
-  return write_atomically(path,
-                          [&](const std::string &tmp) { return write_png_file(tmp, png.desc, png.pixels); });
+  return write_atomically(path, [&](const std::string &tmp) { return write_png_file(tmp, png); });
 }
 
 std::string heatmap_legend(const HeatmapScale &scale) {

@@ -41,9 +41,7 @@ void read_attributes(const ImageDesc &desc, ImageLayers &out) {
 // The file opened at its first part, whose size has been checked.
 Expected<std::unique_ptr<ImageFile>> open_exr(const std::string &path) {
   if (auto problem = image_header_problem(path)) return Error{"cannot read '" + path + "': " + *problem};
-  const Expected<const ImageIo *> io = image_io();
-  if (!io) return Error{"cannot read '" + path + "': " + io.error().message};
-  auto in = (*io)->open(path);
+  auto in = open_image_file(path);
   if (!in) return Error{"cannot read '" + path + "': " + one_line(in.error().message)};
   const ImageDesc &spec = (*in)->desc();
   if (spec.width < 1 || spec.height < 1 || spec.channels.empty())

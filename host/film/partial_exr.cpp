@@ -76,9 +76,7 @@ Expected<PartialImage> read_partial_exr(const std::string &path) {
     if (key.rfind("nimbus:", 0) == 0) out.numbers[key.substr(7)] = value;
 
   const auto fail = [&](const std::string &why) { return Error{"cannot read '" + path + "': " + why}; };
-  const Expected<const ImageIo *> io = image_io();
-  if (!io) return fail(io.error().message);
-  auto opened = (*io)->open(path);
+  auto opened = open_image_file(path);
   if (!opened) return fail(one_line(opened.error().message));
   ImageFile &in = **opened;
   if (!in.seek_part(1))

@@ -23,7 +23,8 @@ void on_warning(png_structp, png_const_charp) {}
 
 }  // namespace
 
-Status write_png_file(const std::string &file, const ImageDesc &desc, const void *pixels) {
+Status write_png_file(const std::string &file, const ImagePart &image) {
+  const ImageDesc &desc = image.desc;
   static const int kColourTypes[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                      PNG_COLOR_TYPE_RGB_ALPHA};
   const size_t channels = desc.channels.size();
@@ -32,8 +33,8 @@ Status write_png_file(const std::string &file, const ImageDesc &desc, const void
   // Everything with a destructor is made before setjmp, so that a longjmp from libpng skips none.
   std::vector<png_bytep> rows(size_t(desc.height));
   for (size_t y = 0; y < rows.size(); ++y)
-    rows[y] =
-        const_cast<png_bytep>(static_cast<const png_byte *>(pixels)) + y * size_t(desc.width) * channels;
+    rows[y] = const_cast<png_bytep>(static_cast<const png_byte *>(image.pixels)) +
+              y * size_t(desc.width) * channels;
   std::vector<png_text> texts;
   for (const ImageAttribute &a : desc.attributes)
     if (a.kind == ImageAttribute::Kind::String)

@@ -9,10 +9,10 @@
 
 namespace nimbus {
 
-// Writes an 8-bit image of 1 (grey), 2 (grey, alpha), 3 (RGB) or 4 (RGBA) channels, `pixels` interleaved,
+// Writes an 8-bit image of 1 (grey), 2 (grey, alpha), 3 (RGB) or 4 (RGBA) channels, its pixels interleaved,
 // scanlines top down, as stored (no alpha association). String attributes become tEXt chunks (PNG's
 // keywords: "Software", "Description", ...); others are ignored. The error is libpng's or the system's
 // reason.
-Status write_png_file(const std::string &file, const ImageDesc &desc, const void *pixels);
+Status write_png_file(const std::string &file, const ImagePart &image);
 
 }  // namespace nimbus

@@ -9,9 +9,7 @@ namespace nimbus {
 Expected<EnvironmentLight> load_environment_map(const std::string &path) {
   if (auto problem = image_header_problem(path))
     return Error{path + ": cannot read environment map: " + *problem};
-  const Expected<const ImageIo *> io = image_io();
-  if (!io) return Error{path + ": cannot read environment map: " + io.error().message};
-  auto opened = (*io)->open(path);
+  auto opened = open_image_file(path);
   if (!opened) {
     const std::string &reason = opened.error().message;
     return Error{path + ": cannot read environment map: " + (reason.empty() ? "cannot open" : reason)};

@@ -162,7 +162,7 @@ TEST(PngWrite, EveryChannelCountRoundTripsThroughAnIndependentReader) {
     ImageDesc desc = image_desc(3, 2, {names.begin(), names.begin() + channels}, PixelType::UInt8);
     desc.attributes.push_back(text_attribute("Description", "channels " + std::to_string(channels)));
     const std::string path = dir.file("c" + std::to_string(channels) + ".png");
-    const Status written = write_png_file(path, desc, bytes.data());
+    const Status written = write_png_file(path, {desc, bytes.data()});
     ASSERT_TRUE(written.ok()) << written.error().message;
     OIIO::ImageSpec spec;
     EXPECT_EQ(read_png(path, spec), bytes) << channels << " channels";
@@ -170,7 +170,7 @@ TEST(PngWrite, EveryChannelCountRoundTripsThroughAnIndependentReader) {
     EXPECT_EQ(spec.get_string_attribute("ImageDescription"), "channels " + std::to_string(channels));
   }
   const Status missing =
-      write_png_file(dir.file("no-such-dir/x.png"), image_desc(1, 1, {"Y"}, PixelType::UInt8), "\x7f");
+      write_png_file(dir.file("no-such-dir/x.png"), {image_desc(1, 1, {"Y"}, PixelType::UInt8), "\x7f"});
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.error().message, "No such file or directory");
   // A full disk, whether libpng's fwrite (a large image) or the final flush (a small one) finds it.
@@ -179,7 +179,7 @@ TEST(PngWrite, EveryChannelCountRoundTripsThroughAnIndependentReader) {
     uint32_t state = 1;
     for (uint8_t &g : grey) g = uint8_t((state = state * 1664525u + 1013904223u) >> 24);  // incompressible
     const Status full =
-        write_png_file("/dev/full", image_desc(side, side, {"Y"}, PixelType::UInt8), grey.data());
+        write_png_file("/dev/full", {image_desc(side, side, {"Y"}, PixelType::UInt8), grey.data()});
     ASSERT_FALSE(full.ok()) << side;
     EXPECT_NE(full.error().message.find("No space left on device"), std::string::npos)
         << full.error().message;

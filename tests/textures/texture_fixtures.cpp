@@ -21,8 +21,7 @@ void write_image(const std::string &format, const std::string &path, int width, 
   std::vector<std::string> channel_names = {"Y"};
   if (channels > 1) channel_names.assign(names.begin(), names.begin() + channels);
   ImagePart image{image_desc(uint32_t(width), uint32_t(height), channel_names, type), pixels};
-  const Status written =
-      format == "png" ? write_png_file(path, image.desc, pixels) : write_exr_file(path, {&image, 1});
+  const Status written = format == "png" ? write_png_file(path, image) : write_exr_file(path, {&image, 1});
   ASSERT_TRUE(written) << written.error().message;
 }
 
