@@ -1,6 +1,7 @@
 #include "core/image_header.hpp"
 
 #include <array>
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -57,17 +58,33 @@ std::optional<std::string> png_problem(std::ifstream &in, uint64_t file_size) {
   return std::nullopt;
 }
 
+// The file's extension in lower case, with its dot.
+std::string lower_extension(const std::string &path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char &c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 }  // namespace
 
 std::optional<std::string> image_header_problem(const std::string &path) {
   std::error_code ec;
   const uint64_t file_size = std::filesystem::file_size(path, ec);
+  if (ec) return std::nullopt;
   std::ifstream in(path, std::ios::binary);
   std::array<uint8_t, 8> start{};
-  if (ec || !in.read(reinterpret_cast<char *>(start.data()), start.size())) return std::nullopt;
-  if (load_le(start.data(), 4) == 20000630)  // OpenEXR's magic number; version field bit 12: multi-part
-    return exr_problem(in, start[5] & 0x10, file_size);
-  if (std::memcmp(start.data(), "\x89PNG\r\n\x1a\n", 8) == 0) return png_problem(in, file_size);
+  in.read(reinterpret_cast<char *>(start.data()), start.size());
+  const bool complete = size_t(in.gcount()) == start.size();
+  const bool exr = complete && load_le(start.data(), 4) == 20000630;  // OpenEXR's magic number
+  const bool png = complete && std::memcmp(start.data(), "\x89PNG\r\n\x1a\n", 8) == 0;
+  // OpenImageIO tries every reader on a file its extension's reader refuses, and some accept a few bytes
+  // of anything as a huge image (WebP's takes a lone 0x2f byte for a lossless bitstream and decodes the
+  // size it claims, ~500 MB for 55 bytes): a file named as OpenEXR or PNG must be one.
+  const std::string ext = lower_extension(path);
+  if (ext == ".exr" && !exr) return "not an OpenEXR file: it does not start with OpenEXR's magic number";
+  if (ext == ".png" && !png) return "not a PNG file: it does not start with the PNG signature";
+  if (exr) return exr_problem(in, start[5] & 0x10, file_size);  // version field bit 12: multi-part
+  if (png) return png_problem(in, file_size);
   return std::nullopt;
 }
 

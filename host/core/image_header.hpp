@@ -8,9 +8,9 @@
 
 namespace nimbus {
 
-// Why the OpenEXR or PNG file at `path` cannot be read (an EXR header attribute or a PNG chunk claims more
-// bytes than the file holds), or nullopt. Other files, and files cut short inside a size field, are left to
-// the reader to report.
+// Why the OpenEXR or PNG file at `path` cannot be read (named .exr or .png without that format's
+// signature, or an EXR header attribute or a PNG chunk claiming more bytes than the file holds), or
+// nullopt. Other files, and files cut short inside a size field, are left to the reader to report.
 std::optional<std::string> image_header_problem(const std::string &path);
 
 }  // namespace nimbus

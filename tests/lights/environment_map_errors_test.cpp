@@ -57,5 +57,15 @@ TEST(EnvironmentMapErrors, HeadersClaimingHugeSizesAreRefusedBeforeAllocating) {
   }
 }
 
+// 55 bytes named .exr that OpenImageIO's WebP reader, tried when OpenEXR's refuses them, takes for a
+// 7711x14457 lossless image and decodes (~600 MB, seconds) before failing: refused by their name's format.
+TEST(EnvironmentMapErrors, FileNamedExrMustBeOpenExr) {
+  const std::string path =
+      std::string(NIMBUS_SOURCE_DIR) + "/tests/fuzz/image/regressions/webp_bitstream_named_exr.exr";
+  const std::string message = load_error(path);
+  expect_names_path_and_reason(message, path);
+  EXPECT_NE(message.find("not an OpenEXR file"), std::string::npos) << message;
+}
+
 }  // namespace environment_map_errors_test
 }  // namespace nimbus

@@ -68,17 +68,30 @@ TEST(TextureErrors, CorruptFileNamesTheReason) {
   std::printf("corrupt file: %s\n", message.c_str());
 }
 
-// Headers that claim more than the file holds (an EXR attribute of 2 GiB, a PNG chunk of 1.7 GiB) or a
-// 100000-pixel side: refused before the image library allocates what they claim (inputs the image reader's
-// fuzz target found, tests/fuzz/image/regressions).
+// Headers that claim more than the file holds (an EXR attribute of 2 GiB, a PNG chunk of 1.7 GiB), a
+// 100000-pixel side, or 55 bytes named .exr that OpenImageIO's WebP reader takes for a 7711x14457 image
+// (~600 MB decoded): refused before the image library allocates what they claim (inputs the image
+// reader's fuzz target found, tests/fuzz/image/regressions).
 TEST(TextureErrors, HeadersClaimingHugeSizesAreRefusedBeforeAllocating) {
   const std::string dir = std::string(NIMBUS_SOURCE_DIR) + "/tests/fuzz/image/regressions/";
-  for (const char *name : {"attribute_size_2gib.exr", "png_chunk_length_1.7gib.png", "huge_header.png"}) {
+  for (const char *name : {"attribute_size_2gib.exr", "png_chunk_length_1.7gib.png", "huge_header.png",
+                           "webp_bitstream_named_exr.exr"}) {
     const std::string message = add_error(dir + name);
     EXPECT_TRUE(has_substr(message, dir + name + ": cannot read texture: ")) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
     std::printf("%s: %s\n", name, message.c_str());
   }
+}
+
+// A texture named .png must be a PNG (and .exr an OpenEXR file): OpenImageIO would try every other
+// reader on it, and WebP's decodes the size a few stray bytes claim.
+TEST(TextureErrors, FileNamedPngMustBePng) {
+  ScratchDir dir;
+  std::filesystem::copy_file(
+      std::string(NIMBUS_SOURCE_DIR) + "/tests/fuzz/image/regressions/webp_bitstream_named_exr.exr",
+      dir.file("webp.png"));
+  const std::string message = add_error(dir.file("webp.png"));
+  EXPECT_TRUE(has_substr(message, dir.file("webp.png") + ": cannot read texture: not a PNG file")) << message;
 }
 
 TEST(TextureErrors, TruncatedPixelDataIsFoundAtBuild) {
