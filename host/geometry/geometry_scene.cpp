@@ -171,44 +171,6 @@ GeometryScene::~GeometryScene() {
   if (device_) rtcReleaseDevice(device_);
 }
 
-void GeometryScene::intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit, float time) const {
-  if (!(ray.tnear <= ray.tfar)) {  // inactive ray
-    hit.geom_id = NIMBUS_NONE;
-    return;
-  }
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  RTCRayHit rh;
-  rh.ray.org_x = ray.org[0], rh.ray.org_y = ray.org[1], rh.ray.org_z = ray.org[2];
-  rh.ray.dir_x = ray.dir[0], rh.ray.dir_y = ray.dir[1], rh.ray.dir_z = ray.dir[2];
-  rh.ray.tnear = ray.tnear, rh.ray.tfar = ray.tfar;
-  rh.ray.time = embree_time(time), rh.ray.mask = 0xFFFFFFFFu, rh.ray.id = 0, rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene_, &ctx, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-    hit = {kInfinity, 0, 0, NIMBUS_NONE, NIMBUS_NONE, NIMBUS_NONE};
-    return;
-  }
-  // A moving mesh is hit inside its instance: the shape is the instance's id.
-  const bool instanced = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID;
-  hit = {rh.ray.tfar,   rh.hit.u,   rh.hit.v, instanced ? rh.hit.instID[0] : rh.hit.geomID,
-         rh.hit.primID, NIMBUS_NONE};
-}
-
-bool GeometryScene::occluded(const nimbus_ray_t &ray, float time) const {
-  if (!(ray.tnear <= ray.tfar)) return false;
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  RTCRay r;
-  r.org_x = ray.org[0], r.org_y = ray.org[1], r.org_z = ray.org[2];
-  r.dir_x = ray.dir[0], r.dir_y = ray.dir[1], r.dir_z = ray.dir[2];
-  r.tnear = ray.tnear, r.tfar = ray.tfar;
-  r.time = embree_time(time), r.mask = 0xFFFFFFFFu, r.id = 0, r.flags = 0;
-  rtcOccluded1(scene_, &ctx, &r);
-  return r.tfar < 0;
-}
-
 void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out,
                                 float time) const {
   // Every field of `out` is written below, and the record has no padding: no zero-fill first.
