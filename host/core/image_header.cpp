@@ -79,7 +79,7 @@ std::optional<std::string> image_header_problem(const std::string &path) {
   const bool png = complete && std::memcmp(start.data(), "\x89PNG\r\n\x1a\n", 8) == 0;
   // OpenImageIO tries every reader on a file its extension's reader refuses, and some accept a few bytes
   // of anything as a huge image (WebP's takes a lone 0x2f byte for a lossless bitstream and decodes the
-  // size it claims, ~500 MB for 55 bytes): a file named as OpenEXR or PNG must be one.
+  // size it claims, ~600 MB for 55 bytes): a file named as OpenEXR or PNG must be one.
   const std::string ext = lower_extension(path);
   if (ext == ".exr" && !exr) return "not an OpenEXR file: it does not start with OpenEXR's magic number";
   if (ext == ".png" && !png) return "not a PNG file: it does not start with the PNG signature";
