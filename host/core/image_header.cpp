@@ -74,9 +74,9 @@ std::optional<std::string> image_header_problem(const std::string &path) {
   std::ifstream in(path, std::ios::binary);
   std::array<uint8_t, 8> start{};
   in.read(reinterpret_cast<char *>(start.data()), start.size());
-  const bool complete = size_t(in.gcount()) == start.size();
-  const bool exr = complete && load_le(start.data(), 4) == 20000630;  // OpenEXR's magic number
-  const bool png = complete && std::memcmp(start.data(), "\x89PNG\r\n\x1a\n", 8) == 0;
+  const auto got = size_t(in.gcount());
+  const bool exr = got >= 4 && load_le(start.data(), 4) == 20000630;  // OpenEXR's magic number
+  const bool png = got == 8 && std::memcmp(start.data(), "\x89PNG\r\n\x1a\n", 8) == 0;
   // OpenImageIO tries every reader on a file its extension's reader refuses, and some accept a few bytes
   // of anything as a huge image (WebP's takes a lone 0x2f byte for a lossless bitstream and decodes the
   // size it claims, ~600 MB for 55 bytes): a file named as OpenEXR or PNG must be one.

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <system_error>
+
+#include "core/image_header.hpp"
 
 namespace nimbus {
 namespace fs = std::filesystem;
@@ -68,6 +71,7 @@ Expected<const ImageIo *> image_io() {
 }
 
 Expected<std::unique_ptr<ImageFile>> open_image_file(const std::string &path) {
+  if (std::optional<std::string> problem = image_header_problem(path)) return Error{*problem};
   const Expected<const ImageIo *> io = image_io();
   if (!io) return io.error();
   return (*io)->open(path);

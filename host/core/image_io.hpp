@@ -124,8 +124,9 @@ class ImageIo {
 // module's path and why it could not be loaded.
 Expected<const ImageIo *> image_io();
 
-// [any-thread] `path` opened through the module, loaded if need be; the error is the module's (its path
-// and why it could not be loaded) or the library's text (possibly several lines, empty when it gave none).
+// [any-thread] `path` opened through the module, loaded if need be, once its header has passed
+// image_header_problem (core/image_header.hpp); the error is that problem, the module's (its path and why
+// it could not be loaded) or the library's text (possibly several lines, empty when it gave none).
 Expected<std::unique_ptr<ImageFile>> open_image_file(const std::string &path);
 
 // The module's one exported function: its ImageIo when `host_version` is the version it was built as.

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 
-#include "core/image_header.hpp"
 #include "core/image_io.hpp"
 #include "core/limits.hpp"
 #include "core/one_line.hpp"
@@ -40,7 +39,6 @@ void read_attributes(const ImageDesc &desc, ImageLayers &out) {
 
 // The file opened at its first part, whose size has been checked.
 Expected<std::unique_ptr<ImageFile>> open_exr(const std::string &path) {
-  if (auto problem = image_header_problem(path)) return Error{"cannot read '" + path + "': " + *problem};
   auto in = open_image_file(path);
   if (!in) return Error{"cannot read '" + path + "': " + one_line(in.error().message)};
   const ImageDesc &spec = (*in)->desc();

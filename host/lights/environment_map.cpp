@@ -1,5 +1,4 @@
 // Reading lat-long environment images through the image I/O module (EXR, HDR, PNG, JPEG...).
-#include "core/image_header.hpp"
 #include "core/image_io.hpp"
 #include "core/limits.hpp"
 #include "lights/light_set.hpp"
@@ -7,8 +6,6 @@
 namespace nimbus {
 
 Expected<EnvironmentLight> load_environment_map(const std::string &path) {
-  if (auto problem = image_header_problem(path))
-    return Error{path + ": cannot read environment map: " + *problem};
   auto opened = open_image_file(path);
   if (!opened) {
     const std::string &reason = opened.error().message;
