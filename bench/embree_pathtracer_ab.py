@@ -160,7 +160,8 @@ def main():
     if a.instructions and not shutil.which("valgrind"):
         sys.exit("--instructions needs valgrind: apt-get install valgrind")
 
-    tmp = tempfile.mkdtemp(prefix="nimbus_embree_ab_")
+    tmp_dir = tempfile.TemporaryDirectory(prefix="nimbus_embree_ab_")  # removed at exit
+    tmp = tmp_dir.name
     scene = os.path.join(tmp, "embree_cornell_box.yaml")
     with open(scene, "w") as f:
         f.write(nimbus_scene(a.ecs, a.size, a.max_depth))

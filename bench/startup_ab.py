@@ -39,7 +39,8 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--scenes", nargs="*", default=["scenes/default.yaml", "scenes/caustics/pool.yaml"])
     a = ap.parse_args()
-    tmp = tempfile.mkdtemp(prefix="nimbus_startup_ab_")
+    tmp_dir = tempfile.TemporaryDirectory(prefix="nimbus_startup_ab_")  # removed at exit
+    tmp = tmp_dir.name
     builds = {"A": os.path.abspath(a.a), "B": os.path.abspath(a.b)}
     quick = {(name, side): [] for name, _ in QUICK for side in builds}
     renders = {(scene, side): [] for scene in a.scenes for side in builds}

@@ -17,7 +17,8 @@ std::string scene(const std::string &name) { return std::string(NIMBUS_E2E_SCENE
 TestDir::TestDir() {
   const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
   const std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "unnamed";
-  path_ = std::filesystem::temp_directory_path() / ("nimbus-e2e-" + std::to_string(::getpid())) / name;
+  root_ = std::filesystem::temp_directory_path() / ("nimbus-e2e-" + std::to_string(::getpid()));
+  path_ = root_ / name;
   std::filesystem::remove_all(path_);
   std::filesystem::create_directories(path_);
 }
@@ -29,7 +30,9 @@ TestDir::~TestDir() {
   }
   std::error_code ec;
   std::filesystem::remove_all(path_, ec);
-  std::filesystem::remove(path_.parent_path(), ec);  // only succeeds once the last test's dir is gone
+  // Each directory up to root_ goes once it is empty (a parameterised test's name holds a '/').
+  for (auto dir = path_.parent_path(); dir.string().size() >= root_.string().size(); dir = dir.parent_path())
+    if (!std::filesystem::remove(dir, ec)) break;
 }
 
 std::vector<std::string> TestDir::entries() const {

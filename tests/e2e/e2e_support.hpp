@@ -33,6 +33,7 @@ class TestDir {
   std::vector<std::string> temporaries() const;
 
  private:
+  std::filesystem::path root_;  // this process's directory; a parameterised test's name nests below it
   std::filesystem::path path_;
 };
 
