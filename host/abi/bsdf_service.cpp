@@ -25,17 +25,9 @@ void eval(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float
   v.store(f);
 }
 
-void sample(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float wo[3], const float u[3],
-            nimbus_transport_mode_t mode, nimbus_bsdf_sample_t *out) {
-  const Local l(host, ix);
-  const Vec3f wow = Vec3f::load(wo);
-  // A diffuse BSDF reads only wo's cosine (plain_diffuse).
-  const DiffuseBsdf *d = l.bsdf().diffuse();
-  const BsdfSample s = d ? d->sample(cosine_only(wow, l.frame().n), u[0], {u[1], u[2]}, mode_of(mode))
-                         : l.bsdf().sample(l.frame().to_local(wow), u[0], {u[1], u[2]}, mode_of(mode));
-  const Vec3f wiw = l.frame().to_world(s.wi);
-  Rgb f = s.f;
-  if (l.needs_factor(mode) && s.pdf > 0) f *= l.factor(ix, mode, wow, wiw);
+// The record of sample s, whose direction is wiw in world space and whose value f carries the factors of
+// the transport mode and normal maps.
+void write_sample(const BsdfSample &s, const Vec3f &wiw, const Rgb &f, nimbus_bsdf_sample_t *out) {
   const bool ok = s.pdf > 0 && std::isfinite(s.pdf) && is_finite(f);
   wiw.store(out->wi);
   (ok ? f : Rgb(0)).store(out->f);
@@ -43,6 +35,30 @@ void sample(const nimbus_host_t *host, const nimbus_interaction_t *ix, const flo
   out->pdf_rev = ok ? s.pdf_rev : 0;
   out->eta = s.eta;
   out->lobe = ok ? s.lobe : 0;
+}
+
+void sample(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float wo[3], const float u[3],
+            nimbus_transport_mode_t mode, nimbus_bsdf_sample_t *out) {
+  const Vec3f wow = Vec3f::load(wo);
+  if (const DiffuseBsdf *d = plain_diffuse(host, ix)) {  // the commonest case: no textures, no Local
+    const Vec3f ns = Vec3f::load(ix->ns);
+    const Frame frame = Frame::from_normal_tangent(ns, Vec3f::load(ix->dpdu));
+    // A diffuse BSDF reads only wo's cosine (plain_diffuse).
+    const BsdfSample s = d->sample(cosine_only(wow, ns), u[0], {u[1], u[2]}, mode_of(mode));
+    const Vec3f wiw = frame.to_world(s.wi);
+    Rgb f = s.f;
+    if (mode == NIMBUS_MODE_IMPORTANCE && s.pdf > 0) f *= adjoint_factor(ix, ns, wow, wiw);
+    write_sample(s, wiw, f, out);
+    return;
+  }
+  const Local l(host, ix);
+  const DiffuseBsdf *d = l.bsdf().diffuse();  // textured: the frame's normal may be mapped
+  const BsdfSample s = d ? d->sample(cosine_only(wow, l.frame().n), u[0], {u[1], u[2]}, mode_of(mode))
+                         : l.bsdf().sample(l.frame().to_local(wow), u[0], {u[1], u[2]}, mode_of(mode));
+  const Vec3f wiw = l.frame().to_world(s.wi);
+  Rgb f = s.f;
+  if (l.needs_factor(mode) && s.pdf > 0) f *= l.factor(ix, mode, wow, wiw);
+  write_sample(s, wiw, f, out);
 }
 
 float pdf(const nimbus_host_t *host, const nimbus_interaction_t *ix, const float wo[3], const float wi[3],
