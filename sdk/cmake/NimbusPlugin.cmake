@@ -1,7 +1,8 @@
 # nimbus_add_plugin(<target> SOURCES <files...> [OUTPUT_DIRECTORY <dir>] [NO_INSTALL])
 #
 # Builds a Nimbus plugin as a MODULE library that exports only `nimbus_plugin_entry`: hidden visibility,
-# a version script, and --no-undefined so that a missing symbol fails at link time, not at load time.
+# a version script, and --no-undefined so that a missing symbol fails at link time, not at load time; and
+# compiled without SLP vectorisation (below).
 # Plugins never link host libraries; only C crosses the boundary.
 
 function(nimbus_add_plugin target)
@@ -17,6 +18,14 @@ function(nimbus_add_plugin target)
     VISIBILITY_INLINES_HIDDEN ON)
   target_link_options(${target} PRIVATE
     "LINKER:--version-script=${_NIMBUS_PLUGIN_MAP}" "LINKER:--no-undefined")
+  # Without SLP vectorisation: it reads neighbouring floats of the records the host fills (hits, BSDF
+  # samples) with wider loads that straddle the host's stores, and each such load waits for those stores
+  # to reach the cache, at every vertex (docs/performance.md §1: 2-4 % of a render).
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" OR CMAKE_C_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(${target} PRIVATE -fno-tree-slp-vectorize)
+  elseif(CMAKE_CXX_COMPILER_ID MATCHES "Clang" OR CMAKE_C_COMPILER_ID MATCHES "Clang")
+    target_compile_options(${target} PRIVATE -fno-slp-vectorize)
+  endif()
   # Sanitizer runtimes are provided by the host executable; allow their symbols to stay undefined. GCC
   # links its runtime library into the module as well; Clang never does (its runtime is static in the
   # executable), so there the module's own references to it stay undefined too (-z undefs).
