@@ -10,17 +10,32 @@
 namespace nimbus {
 namespace {
 
-// A hit's surface before the record is written; error bounds each coordinate's rounding error in p.
+// A hit's surface before the record is written; error bounds each coordinate's rounding error in p. The
+// functions that fill and write it are forced inline: called, they pass it through memory, which costs
+// more than the split saves.
 struct Surface {
   Vec3f p, error, ng, ns, dpdu, dpdv;
   Vec2f uv;
 };
 
-// The hit at barycentrics (b1, b2) of triangle (i0, i1, i2) of `m`, with corners `v` and vertex normals
-// `n` (null without them): its rest positions, or a deforming mesh's at the ray's time.
-[[gnu::always_inline]] inline Surface triangle_surface(const MeshData &m, uint32_t i0, uint32_t i1,
-                                                       uint32_t i2, const Vec3f (&v)[3], const Vec3f *n,
-                                                       float b1, float b2) {
+// Triangle prim's corner indices and rest positions (and vertex normals, when the mesh has them).
+struct Corners {
+  uint32_t i[3];
+  Vec3f v[3], n[3];
+  Corners(const MeshData &m, uint32_t prim)
+      : i{m.indices[3 * prim], m.indices[3 * prim + 1], m.indices[3 * prim + 2]},
+        v{m.positions[i[0]], m.positions[i[1]], m.positions[i[2]]} {
+    if (!m.normals.empty()) n[0] = m.normals[i[0]], n[1] = m.normals[i[1]], n[2] = m.normals[i[2]];
+  }
+};
+
+// The hit at barycentrics (b1, b2) of the triangle with corners c of mesh m: its rest positions, or a
+// deforming mesh's at the ray's time.
+[[gnu::always_inline]] inline Surface triangle_surface(const MeshData &m, const Corners &c, float b1,
+                                                       float b2) {
+  const Vec3f(&v)[3] = c.v;
+  const Vec3f *n = m.normals.empty() ? nullptr : c.n;
+  const uint32_t i0 = c.i[0], i1 = c.i[1], i2 = c.i[2];
   Surface s;
   const float b0 = 1 - b1 - b2;
   // Barycentric interpolation is far more accurate than o + t d (pbrt-v4 section 6.8).
@@ -146,17 +161,6 @@ Surface moved(const Surface &o, const Transform &m, const Transform &inv) {
               (sh.two_sided ? NIMBUS_IX_TWO_SIDED : 0u);
 }
 
-// Triangle prim's corner indices and rest positions (and vertex normals, when the mesh has them).
-struct Corners {
-  uint32_t i[3];
-  Vec3f v[3], n[3];
-  Corners(const MeshData &m, uint32_t prim)
-      : i{m.indices[3 * prim], m.indices[3 * prim + 1], m.indices[3 * prim + 2]},
-        v{m.positions[i[0]], m.positions[i[1]], m.positions[i[2]]} {
-    if (!m.normals.empty()) n[0] = m.normals[i[0]], n[1] = m.normals[i[1]], n[2] = m.normals[i[2]];
-  }
-};
-
 }  // namespace
 
 void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit, nimbus_interaction_t &out,
@@ -167,9 +171,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
   if (triangle && !sh.motion && !sh.mesh->deforms()) {
     const MeshData &m = *sh.mesh;
     const Corners c(m, hit.prim_id);
-    write_record(
-        triangle_surface(m, c.i[0], c.i[1], c.i[2], c.v, m.normals.empty() ? nullptr : c.n, hit.u, hit.v), sh,
-        world_dir, out);
+    write_record(triangle_surface(m, c, hit.u, hit.v), sh, world_dir, out);
     return;
   }
   // Analytic shapes are computed where they are defined: a moving one in object space at the ray's time
@@ -197,7 +199,7 @@ void GeometryScene::interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit
       if (!m.normal_steps.empty())
         for (int k = 0; k < 3; ++k) c.n[k] = lerp(m.normal_steps, c.i[k]);
     }
-    s = triangle_surface(m, c.i[0], c.i[1], c.i[2], c.v, m.normals.empty() ? nullptr : c.n, hit.u, hit.v);
+    s = triangle_surface(m, c, hit.u, hit.v);
   }
   if (sh.motion) s = moved(s, *to_world, *to_object);
   write_record(s, sh, world_dir, out);
