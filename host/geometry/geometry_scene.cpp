@@ -49,10 +49,12 @@ bool far_for_its_size(const Vec3f &lo, const Vec3f &hi) {
 
 // A moving shape: its object-space geometry (released here) in a scene of their own, instanced with one
 // transform per time step (Embree interpolates them at each ray's time, as MotionTransform::at does).
+// Embree tests rays against it in object space, so the robust test follows the object-space bounds, by
+// the same rule as the world's scene (robust).
 RTCGeometry make_moving_instance(RTCDevice device, RTCGeometry own, const MotionTransform &motion,
-                                 RTCScene &object_scene) {
+                                 bool robust, RTCScene &object_scene) {
   object_scene = rtcNewScene(device);
-  rtcSetSceneFlags(object_scene, RTC_SCENE_FLAG_ROBUST);  // moving shapes are rare: no fast path needed
+  rtcSetSceneFlags(object_scene, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
   rtcAttachGeometryByID(object_scene, own, 0);
   rtcReleaseGeometry(own);
   rtcCommitScene(object_scene);
@@ -131,7 +133,7 @@ Expected<std::unique_ptr<GeometryScene>> GeometryScene::build(const SceneDesc &d
         gs->shutter_open_ = sd.motion->open(), gs->shutter_close_ = sd.motion->close();
       }
       RTCScene object_scene = nullptr;
-      g = make_moving_instance(gs->device_, g, *sd.motion, object_scene);
+      g = make_moving_instance(gs->device_, g, *sd.motion, far_for_its_size(lo, hi), object_scene);
       gs->shapes_.back().instance = g;
       gs->object_scenes_.push_back(object_scene);
     } else {
