@@ -32,7 +32,14 @@ With --instructions, also the instructions each renderer executes per camera sam
 callgrind (Debian's valgrind) and so exact and repeatable where times drift: the difference between
 renders of 8 and 4 frames (iterations) at --instructions-size (default 128x128), one thread, so that
 start-up, loading and writing cancel; split into Embree's share (its library) and the rest. A few
-minutes; `--runs 0 --instructions` counts instructions alone. Not part of CI.
+minutes; `--runs 0 --instructions` counts instructions alone.
+
+With --perf, also where each renderer's time goes (Debian's linux-perf; no hardware counters needed):
+one thread, `perf record` at 4 kHz of the tutorial (its warm-up frames included) and of `nimbus.pt`
+(loading and writing included), and per renderer the CPU milliseconds in Embree's library per million
+rays traced and outside it per frame. Equal instructions per ray in Embree (--instructions) with more
+time per ray flags stalls in what feeds it (how store-forwarding stalls on the rays were found). Not
+part of CI.
 """
 import argparse
 import math
@@ -138,6 +145,43 @@ def instructions_per_sample(a, tmp):
     return rows
 
 
+def perf_dso_milliseconds(cmd, cwd, tmp):
+    """(milliseconds in libembree, milliseconds in all) of one command, from `perf record` at 4 kHz."""
+    data = os.path.join(tmp, "perf.data")
+    subprocess.run(["perf", "record", "-q", "-F", "4000", "-o", data] + cmd, cwd=cwd, check=True,
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    report = subprocess.run(["perf", "report", "-i", data, "--stdio", "--sort", "dso", "-n"],
+                            capture_output=True, text=True, check=True).stdout
+    embree = total = 0
+    for line in report.splitlines():
+        m = re.match(r"\s*[0-9.]+%\s+([0-9]+)\s+(\S+)", line)
+        if m:
+            total += int(m.group(1))
+            embree += int(m.group(1)) if "libembree" in m.group(2) else 0
+    return embree / 4.0, total / 4.0
+
+
+def time_split(a, tmp, scene):
+    """Rows (renderer, Embree ms per million rays, other ms per frame) from one-thread perf profiles."""
+    w, h = a.size
+    ecs = os.path.abspath(a.ecs)
+    frames = a.frames
+    cmd = [a.pathtracer, "-c", ecs, "--size", str(w), str(h), "--benchmark", "2", str(frames), "--threads", "1",
+           "--max-path-length", str(a.max_depth)]
+    out = subprocess.run(cmd, capture_output=True, text=True, check=True, cwd=os.path.dirname(ecs)).stdout
+    fps = float(re.search(r"BENCHMARK_RENDER_AVG\s+([0-9.eE+-]+)", out).group(1))
+    mrays = float(re.search(r"BENCHMARK_RENDER_MRAYPS_AVG\s+([0-9.eE+-]+)", out).group(1))
+    tutorial_rays = mrays * 1e6 / fps * (frames + 2)  # rays per frame, warm-up frames included
+    e_ms, all_ms = perf_dso_milliseconds(cmd, os.path.dirname(ecs), tmp)
+    rows = [("embree tutorial pathtracer", e_ms / (tutorial_rays / 1e6), (all_ms - e_ms) / (frames + 2))]
+    image = os.path.join(tmp, "perf.exr")
+    cmd = [a.nimbus, "render", scene, "-o", image, "--iterations", str(frames), "--threads", "1", "-q"]
+    e_ms, all_ms = perf_dso_milliseconds(cmd, None, tmp)
+    rays = float(exr_metadata(image)["nimbus:rays"])
+    rows.append(("nimbus.pt", e_ms / (rays / 1e6), (all_ms - e_ms) / frames))
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--nimbus", default="build/bin/nimbus")
@@ -153,12 +197,16 @@ def main():
     ap.add_argument("--instructions", action="store_true",
                     help="also count instructions per camera sample with callgrind")
     ap.add_argument("--instructions-size", type=int, nargs=2, default=[128, 128])
+    ap.add_argument("--perf", action="store_true",
+                    help="also split each renderer's time into Embree per ray and the rest per frame (linux-perf)")
     a = ap.parse_args()
     for tool in (a.pathtracer, a.ecs):
         if not os.path.exists(tool):
             sys.exit("%s is missing: apt-get install embree-tools" % tool)
     if a.instructions and not shutil.which("valgrind"):
         sys.exit("--instructions needs valgrind: apt-get install valgrind")
+    if a.perf and not shutil.which("perf"):
+        sys.exit("--perf needs perf: apt-get install linux-perf")
 
     tmp_dir = tempfile.TemporaryDirectory(prefix="nimbus_embree_ab_")  # removed at exit
     tmp = tmp_dir.name
@@ -200,6 +248,13 @@ def main():
     for scene in first_pixel_scenes:
         runs = [first_pixel(a.nimbus, scene, a.threads, out) for _ in range(a.runs)]
         print("%-32s %8.3f %8.3f %16.3f %14.3f %10.3f" % ((scene,) + tuple(med(r[k] for r in runs) for k in range(5))))
+
+    if a.perf:
+        print("\nwhere the time goes (perf record, one thread, %d frames at %dx%d; loading and writing included)"
+              % (a.frames, a.size[0], a.size[1]))
+        print("%-32s %24s %28s" % ("", "Embree ms per M rays", "outside Embree, ms per frame"))
+        for name, per_ray, per_frame in time_split(a, tmp, scene):
+            print("%-32s %24.1f %28.1f" % (name, per_ray, per_frame))
 
     if a.instructions:
         rows = instructions_per_sample(a, tmp)
