@@ -52,7 +52,7 @@ void sample(const nimbus_host_t *host, const nimbus_interaction_t *ix, const flo
     return;
   }
   const Local l(host, ix);
-  const DiffuseBsdf *d = l.bsdf().diffuse();  // textured: the frame's normal may be mapped
+  const DiffuseBsdf *d = l.bsdf().diffuse();  // textured: a normal map may have moved the frame's normal
   const BsdfSample s = d ? d->sample(cosine_only(wow, l.frame().n), u[0], {u[1], u[2]}, mode_of(mode))
                          : l.bsdf().sample(l.frame().to_local(wow), u[0], {u[1], u[2]}, mode_of(mode));
   const Vec3f wiw = l.frame().to_world(s.wi);

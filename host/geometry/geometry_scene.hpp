@@ -140,8 +140,6 @@ inline Vec3f offset_origin(const Vec3f &p, const Vec3f &ng, float eps, const Vec
   return {away(o.x, offset.x), away(o.y, offset.y), away(o.z, offset.z)};
 }
 
-// The ray queries, defined here so that the scene services (abi/scene_service.cpp), which call them for
-// every ray, inline them.
 // Embree's ray as it reads it: (org, tnear) and (dir, time) each with one 16-byte load. Written with one
 // 16-byte store each, the load takes the stored value straight from the store buffer; written as separate
 // floats, the wider load must wait until they have reached the cache (a store-forwarding stall per ray).
@@ -157,6 +155,8 @@ inline void store_embree_ray(const nimbus_ray_t &ray, float time, RTCRay &out) {
   out.tfar = ray.tfar, out.mask = 0xFFFFFFFFu, out.id = 0, out.flags = 0;
 }
 
+// The ray queries, defined here so that the scene services (abi/scene_service.cpp), which call them for
+// every ray, inline them.
 inline void GeometryScene::intersect(const nimbus_ray_t &ray, nimbus_hit_t &hit, float time) const {
   if (!(ray.tnear <= ray.tfar)) {  // inactive ray
     hit.geom_id = NIMBUS_NONE;
