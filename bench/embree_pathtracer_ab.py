@@ -91,14 +91,25 @@ def nimbus_scene(ecs, size, max_depth):
     return "\n".join(lines) + "\n"
 
 
-def embree_run(pathtracer, ecs, size, threads, frames, max_depth):
-    """(samples/s, rays/s) of one tutorial benchmark run."""
-    cmd = [pathtracer, "-c", ecs, "--size", str(size[0]), str(size[1]), "--benchmark", "2", str(frames),
-           "--threads", str(threads), "--max-path-length", str(max_depth)]
-    out = subprocess.run(cmd, capture_output=True, text=True, check=True, cwd=os.path.dirname(ecs)).stdout
+def tutorial_command(pathtracer, ecs, size, threads, frames, max_depth, warmup=2):
+    """The tutorial's benchmark command (`warmup` untimed frames, then `frames` timed); run it in ecs's folder."""
+    return [pathtracer, "-c", ecs, "--size", str(size[0]), str(size[1]), "--benchmark", str(warmup), str(frames),
+            "--threads", str(threads), "--max-path-length", str(max_depth)]
+
+
+def tutorial_figures(out):
+    """(frames/s, rays/s) from the tutorial's benchmark output."""
     fps = float(re.search(r"BENCHMARK_RENDER_AVG\s+([0-9.eE+-]+)", out).group(1))
     mrays = float(re.search(r"BENCHMARK_RENDER_MRAYPS_AVG\s+([0-9.eE+-]+)", out).group(1))
-    return fps * size[0] * size[1], mrays * 1e6
+    return fps, mrays * 1e6
+
+
+def embree_run(pathtracer, ecs, size, threads, frames, max_depth):
+    """(samples/s, rays/s) of one tutorial benchmark run."""
+    cmd = tutorial_command(pathtracer, ecs, size, threads, frames, max_depth)
+    out = subprocess.run(cmd, capture_output=True, text=True, check=True, cwd=os.path.dirname(ecs)).stdout
+    fps, rays = tutorial_figures(out)
+    return fps * size[0] * size[1], rays
 
 
 def nimbus_run(nimbus, scene, size, threads, frames, out, extra):
@@ -131,8 +142,7 @@ def instructions_per_sample(a, tmp):
     ecs = os.path.abspath(a.ecs)
 
     def tutorial(n):
-        return ([a.pathtracer, "-c", ecs, "--size", str(w), str(h), "--benchmark", "0", str(n), "--threads", "1",
-                 "--max-path-length", str(a.max_depth)], os.path.dirname(ecs))
+        return tutorial_command(a.pathtracer, ecs, (w, h), 1, n, a.max_depth, warmup=0), os.path.dirname(ecs)
 
     def nimbus(n):
         return [a.nimbus, "render", scene, "-o", out, "--iterations", str(n), "--threads", "1", "-q"], None
@@ -146,10 +156,11 @@ def instructions_per_sample(a, tmp):
 
 
 def perf_dso_milliseconds(cmd, cwd, tmp):
-    """(milliseconds in libembree, milliseconds in all) of one command, from `perf record` at 4 kHz."""
+    """(milliseconds in libembree, milliseconds in all, the command's output) of one command, from `perf
+    record` at 4 kHz."""
     data = os.path.join(tmp, "perf.data")
-    subprocess.run(["perf", "record", "-q", "-F", "4000", "-o", data] + cmd, cwd=cwd, check=True,
-                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    out = subprocess.run(["perf", "record", "-q", "-F", "4000", "-o", data] + cmd, cwd=cwd, check=True,
+                         capture_output=True, text=True).stdout
     report = subprocess.run(["perf", "report", "-i", data, "--stdio", "--sort", "dso", "-n"],
                             capture_output=True, text=True, check=True).stdout
     embree = total = 0
@@ -158,25 +169,21 @@ def perf_dso_milliseconds(cmd, cwd, tmp):
         if m:
             total += int(m.group(1))
             embree += int(m.group(1)) if "libembree" in m.group(2) else 0
-    return embree / 4.0, total / 4.0
+    return embree / 4.0, total / 4.0, out
 
 
 def time_split(a, tmp, scene):
     """Rows (renderer, Embree ms per million rays, other ms per frame) from one-thread perf profiles."""
-    w, h = a.size
     ecs = os.path.abspath(a.ecs)
     frames = a.frames
-    cmd = [a.pathtracer, "-c", ecs, "--size", str(w), str(h), "--benchmark", "2", str(frames), "--threads", "1",
-           "--max-path-length", str(a.max_depth)]
-    out = subprocess.run(cmd, capture_output=True, text=True, check=True, cwd=os.path.dirname(ecs)).stdout
-    fps = float(re.search(r"BENCHMARK_RENDER_AVG\s+([0-9.eE+-]+)", out).group(1))
-    mrays = float(re.search(r"BENCHMARK_RENDER_MRAYPS_AVG\s+([0-9.eE+-]+)", out).group(1))
-    tutorial_rays = mrays * 1e6 / fps * (frames + 2)  # rays per frame, warm-up frames included
-    e_ms, all_ms = perf_dso_milliseconds(cmd, os.path.dirname(ecs), tmp)
+    cmd = tutorial_command(a.pathtracer, ecs, a.size, 1, frames, a.max_depth)
+    e_ms, all_ms, out = perf_dso_milliseconds(cmd, os.path.dirname(ecs), tmp)
+    fps, rays_per_s = tutorial_figures(out)
+    tutorial_rays = rays_per_s / fps * (frames + 2)  # rays per frame, warm-up frames included
     rows = [("embree tutorial pathtracer", e_ms / (tutorial_rays / 1e6), (all_ms - e_ms) / (frames + 2))]
     image = os.path.join(tmp, "perf.exr")
     cmd = [a.nimbus, "render", scene, "-o", image, "--iterations", str(frames), "--threads", "1", "-q"]
-    e_ms, all_ms = perf_dso_milliseconds(cmd, None, tmp)
+    e_ms, all_ms, _ = perf_dso_milliseconds(cmd, None, tmp)
     rays = float(exr_metadata(image)["nimbus:rays"])
     rows.append(("nimbus.pt", e_ms / (rays / 1e6), (all_ms - e_ms) / frames))
     return rows
