@@ -209,7 +209,10 @@ class MergingPath {
 
   sdk::PathWeight hit(const sdk::LightHit &h) const {
     const float nee_ratio = h.specular ? 0.0f : mis(h.light_pdf / h.bsdf_pdf);
-    const float lp = hit_lp(*mc_.emitters, h);
+    // No merge technique for this path (no live camera term, as on every path without a sharp vertex):
+    // the merges' sum is empty and the emission density, a host call and a loop over the aims, unused.
+    const bool eligible = mis_.eligible(h.segments);
+    const float lp = eligible ? hit_lp(*mc_.emitters, h) : 0.0f;
     Mis lt = 0;
     if (h.segments >= 3 && mis_.lt > 0) {  // light paths leave direct light to path tracing
       const float lp_lt = mc_.lt_emission->lp(*mc_.emitters, h.light, h.p, h.n, h.wo, h.time);
@@ -218,7 +221,7 @@ class MergingPath {
     const float w = hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped, lt);
     const float without =
         lt > 0 ? ratio_without(w, hit_weight(nee_ratio, mis_.s_cam(h.segments), lp, mis_.clamped)) : 1.0f;
-    return {w, lp > 0 && mis_.eligible(h.segments), without};
+    return {w, lp > 0 && eligible, without};
   }
 
   void vertex(const sdk::PathVertex &v, CausticsRecord &rec) {
@@ -268,7 +271,8 @@ class MergingPath {
     const nimbus_light_incident_t &ls = *s.ls;
     const bool infinite = ls.flags & NIMBUS_LIGHT_INFINITE;
     const float hit_ratio = s.delta ? 0.0f : mis(s.bsdf_pdf / s.light_pdf);
-    const float lp = nee_lp(*mc_.emitters, s);
+    const bool eligible = mis_.eligible(s.segments);  // as in hit()
+    const float lp = eligible ? nee_lp(*mc_.emitters, s) : 0.0f;
     const float cos_j = std::abs(dot(Vec3f::load(s.ix->ng), s.wi));
     const float d2 = infinite ? 1.0f : ls.dist * ls.dist;
     float nk = s.pmf;  // delta lights
@@ -286,7 +290,7 @@ class MergingPath {
                               ? ratio_without(w, nee_weight(hit_ratio, s.bsdf_pdf_rev, mis_.s_cam(s.segments),
                                                             lp, cos_j / d2, nk, mis_.clamped))
                               : 1.0f;
-    return {w, lp > 0 && mis_.eligible(s.segments), without};
+    return {w, lp > 0 && eligible, without};
   }
 
   void scatter(const nimbus_interaction_t &ix, const Vec3f &wi, const nimbus_bsdf_sample_t &bs,
