@@ -86,10 +86,8 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     if (nimbus_status_t s = Base::begin_render(info); s != NIMBUS_OK) return s;
     split_ = sdk::TaskSplit::of(info);
     merge_id_ = services().film->is_active(h, merge_element_) ? merge_element_ : NIMBUS_ELEMENT_INVALID;
-    region_pixels_.resize(info.worker_count);
-    lookup_radii_.resize(info.worker_count);
-    tallies_.resize(info.worker_count);
-    marks_.resize(info.worker_count);
+    region_pixels_.resize(info.worker_count), lookup_radii_.resize(info.worker_count);
+    tallies_.resize(info.worker_count), marks_.resize(info.worker_count);
     importance_ = pass_importance_ = ImportanceMap(scene_center_, scene_radius_);
     theta_pix_ = services().camera->resolution(h, &width_, &height_);
     merge_.clock = PhotonClock::of(h, services().camera, options_.times_matched);
@@ -123,8 +121,7 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
     pass_.release();
     map_active_ = rebuild_map_ = false;
     map_request_ = 0, map_reach_ = 0, photon_work_ = 0;
-    roulette_ = {};
-    stats_ = {};
+    roulette_ = {}, stats_ = {};
     return NIMBUS_OK;
   }
 
@@ -184,9 +181,12 @@ class CausticsSolver final : public sdk::CameraPathIntegrator<CausticsSolver, Ca
   // The camera-path layer's hooks: the camera path of one sample, and the statistics of the schedule.
   void sample(const nimbus_thread_ctx_t &ctx, uint32_t x, uint32_t y, nimbus_rng_t &rng,
               CausticsRecord &rec) {
+    const size_t pixel = size_t(y) * width_ + x;
+    // The pixel's statistics, touched when its path ends and long out of cache, load while it is traced.
+    if (armed_) useful_.prefetch(pixel), pixel_radius_.prefetch(pixel);
     if (map_active_) {
       MergingPath path(merge_, lookup_radii_[ctx], tallies_[ctx], guide_ ? &marks_[ctx] : nullptr,
-                       importance_, mix64(rng.state ^ rng.inc), pixel_radius_, size_t(y) * width_ + x);
+                       importance_, mix64(rng.state ^ rng.inc), pixel_radius_, pixel);
       trace(ctx, x, y, rng, rec, path);
     } else if (classify_) {
       ClassifyingPath path(emitters_, services().bsdf, host().get());

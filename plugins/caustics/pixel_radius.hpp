@@ -43,6 +43,11 @@ class PixelRadius {
     return r * std::max(kMinScale, float(std::sqrt(kTargetPhotons / expected)));
   }
 
+  // [render-thread] Starts fetching what radius() and found() will read of pixel i.
+  void prefetch(size_t i) const {
+    if (i < sums_.size()) __builtin_prefetch(&sums_[i], 1), __builtin_prefetch(&density_[i], 0);
+  }
+
   // [render-thread] A first lookup of pixel i found `found` photons within radius r (each counted by its
   // light's density weight, merging.hpp), with `neff` effective photon paths (each pixel belongs to one
   // tile, so no two threads meet).

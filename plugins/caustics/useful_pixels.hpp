@@ -78,6 +78,10 @@ class UsefulPixels {
     for (uint32_t k = 0; k < kLookupClasses; ++k) s.moment[k] += moment[k];
     s.map_n += 1, s.map_merge += m, s.map_merge2 += m * m, s.map_split += split;
   }
+  // [render-thread] Starts fetching pixel i's sums, which add() will read.
+  void prefetch(size_t i) const {
+    if (i < sums_.size()) __builtin_prefetch(&sums_[i], 1);
+  }
   // [render-thread] The same from a sample record (caustics_record.hpp).
   template <class Record>
   void add(size_t i, const Record &r) {
