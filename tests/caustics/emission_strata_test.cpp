@@ -4,6 +4,7 @@
 // and a task's run of consecutive paths stays within a small part of the square.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <utility>
@@ -37,6 +38,42 @@ TEST(CausticsEmissionStrata, HilbertCurveIsABijectionOfTouchingCells) {
       px = x, py = y;
     }
     EXPECT_EQ(seen.size(), cells);
+  }
+}
+
+// The textbook inverse (rotation by branches), which the masked one must match cell for cell: the
+// emission samples, and so every caustic render, stay what they were.
+void classic_hilbert_cell(uint64_t d, uint32_t order, uint32_t &x, uint32_t &y) {
+  x = y = 0;
+  for (uint32_t s = 1; s < (uint32_t(1) << order); s <<= 1) {
+    const uint32_t rx = 1 & uint32_t(d >> 1), ry = 1 & uint32_t(d ^ rx);
+    if (ry == 0) {
+      if (rx == 1) x = s - 1 - x, y = s - 1 - y;
+      std::swap(x, y);
+    }
+    x += s * rx, y += s * ry;
+    d >>= 2;
+  }
+}
+
+TEST(CausticsEmissionStrata, HilbertCellMatchesTheTextbookInverse) {
+  Pcg32 rng(5);
+  for (uint32_t order = 1; order <= kHilbertOrder; ++order) {
+    const uint64_t cells = uint64_t(1) << (2 * order);
+    // Every cell of the small grids; 2^16 random ones and the last of the large.
+    const uint64_t checks = std::min<uint64_t>(cells, 1u << 16);
+    for (uint64_t k = 0; k < checks; ++k) {
+      uint64_t d = k;
+      if (cells > checks) {
+        const uint64_t high = rng.next();
+        d = k + 1 == checks ? cells - 1 : (high << 32 | rng.next()) % cells;
+      }
+      uint32_t x = 0, y = 0, cx = 0, cy = 0;
+      hilbert_cell(d, order, x, y);
+      classic_hilbert_cell(d, order, cx, cy);
+      ASSERT_EQ(x, cx) << "order " << order << " d " << d;
+      ASSERT_EQ(y, cy) << "order " << order << " d " << d;
+    }
   }
 }
 
