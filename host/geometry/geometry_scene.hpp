@@ -71,6 +71,9 @@ class GeometryScene {
   float embree_time(float time) const {
     return moves_ ? std::clamp((time - shutter_open_) / (shutter_close_ - shutter_open_), 0.0f, 1.0f) : 0.0f;
   }
+  // interaction() for shapes that move or are not triangles (hit_interaction.cpp).
+  void moving_or_analytic_interaction(const nimbus_ray_t &ray, const nimbus_hit_t &hit,
+                                      nimbus_interaction_t &out, float time) const;
   // A moving shape's object-to-world transform at scene time `time`, as Embree's intersection used it.
   Transform instance_transform(const ShapeRecord &s, float time) const;
   RTCDevice device_ = nullptr;

@@ -2,6 +2,8 @@
 // self-intersection when rays leave a surface (scene scales 1e-4 to 1e6).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstring>
 #include <random>
 
 #include "geometry/geometry_scene.hpp"
@@ -182,6 +184,55 @@ TEST(RayQuery, DiskHitInsideRadiusOnly) {
   // Parallel to the plane: a miss, not a division by zero.
   (*g)->intersect(make_ray({-2, 0, 1}, {1, 0, 0}), hit);
   EXPECT_EQ(hit.geom_id, NIMBUS_NONE);
+}
+
+// A triangle hit's frame is the scalar formulas' bit for bit (area lights compute their samples' normals
+// with oriented_triangle_normal, and MIS needs the two to agree): ng, oriented towards vertex normals that
+// point against the winding; ns, the normalised interpolated normal; dpdu and dpdv from the uvs.
+TEST(RayQuery, TriangleFrameIsTheScalarFormulasBitForBit) {
+  ShapeDesc s;
+  s.type = ShapeType::Mesh;
+  MeshData &m = s.mesh;
+  m.positions = {{0.3f, -1.1f, 2.0f}, {4.1f, 0.2f, 2.7f}, {0.9f, 3.3f, 1.4f}};
+  m.indices = {0, 1, 2};
+  m.normals = {normalize(Vec3f{0.1f, 0.2f, -1}), normalize(Vec3f{-0.2f, 0.1f, -1}),
+               normalize(Vec3f{0, 0.3f, -1})};
+  m.uvs = {{0.1f, 0.2f}, {0.9f, 0.3f}, {0.4f, 0.8f}};
+  const SceneDesc d = scene_with({s});
+  auto g = GeometryScene::build(d);
+  ASSERT_TRUE(g.ok()) << g.error().message;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.02f, 0.96f);
+  for (int i = 0; i < 200; ++i) {
+    float b1 = u(rng), b2 = u(rng);
+    if (b1 + b2 > 0.98f) b1 = 0.98f - b1, b2 = std::max(0.0f, 0.98f - b2) * 0.5f;
+    const Vec3f target = m.positions[0] * (1 - b1 - b2) + m.positions[1] * b1 + m.positions[2] * b2;
+    const nimbus_ray_t ray = make_ray(target + Vec3f{0.2f, -0.1f, 3}, Vec3f{-0.2f, 0.1f, -3});
+    nimbus_hit_t hit;
+    (*g)->intersect(ray, hit);
+    ASSERT_EQ(hit.geom_id, 0u);
+    nimbus_interaction_t ix;
+    (*g)->interaction(ray, hit, ix);
+    const float h0 = 1 - hit.u - hit.v;
+    const Vec3f ng = oriented_triangle_normal(m, 0, hit.u, hit.v);
+    EXPECT_LT(ng.z, 0) << "oriented towards the vertex normals, against the winding";
+    const Vec3f ns = normalize(m.normals[0] * h0 + m.normals[1] * hit.u + m.normals[2] * hit.v);
+    const Vec3f e1 = m.positions[1] - m.positions[0], e2 = m.positions[2] - m.positions[0];
+    const float du1 = m.uvs[1].x - m.uvs[0].x, du2 = m.uvs[2].x - m.uvs[0].x;
+    const float dv1 = m.uvs[1].y - m.uvs[0].y, dv2 = m.uvs[2].y - m.uvs[0].y;
+    const float det = du1 * dv2 - dv1 * du2;
+    const Vec3f dpdu = (e1 * dv2 - e2 * dv1) / det, dpdv = (e2 * du1 - e1 * du2) / det;
+    const auto same = [](const Vec3f &want, const float got[3]) {
+      return std::memcmp(&want.x, got, 4) == 0 && std::memcmp(&want.y, got + 1, 4) == 0 &&
+             std::memcmp(&want.z, got + 2, 4) == 0;
+    };
+    EXPECT_TRUE(same(ng, ix.ng)) << i;
+    EXPECT_TRUE(same(ns, ix.ns)) << i;
+    EXPECT_TRUE(same(dpdu, ix.dpdu)) << i;
+    EXPECT_TRUE(same(dpdv, ix.dpdv)) << i;
+    EXPECT_LT(length(Vec3f::load(ix.p) - target), 1e-5f);
+    EXPECT_GT(ix.eps, 0);
+  }
 }
 
 }  // namespace ray_query_test
