@@ -250,13 +250,15 @@ class CameraPathIntegrator : public Integrator {
       path.vertex(PathVertex{&ctx, &ix, wo, lobes, beta, segments, time, time_u, spectrum.lambda()}, rec);
       if (segments >= max_depth_) break;
 
-      if (!smooth_only) direct_light(ctx, ix, wo, time, spectrum, rng, beta, segments + 1, rec, path);
-
-      // Continue the path by sampling the BSDF.
+      // Next-event estimation, then the BSDF sample that continues the path, in the order of their random
+      // numbers; the sample is taken first, so that its chain of dependent arithmetic (the next ray's
+      // direction) overlaps the shadow ray's work instead of waiting for it.
+      const LightNumbers nee_u = smooth_only ? LightNumbers{} : light_numbers(rng);
       float wo_arr[3], u[3] = {next_uniform(rng), next_uniform(rng), next_uniform(rng)};
       wo.store(wo_arr);
       nimbus_bsdf_sample_t bs;
       spectrum.sample(&ix, wo_arr, u, NIMBUS_MODE_RADIANCE, &bs);
+      if (!smooth_only) direct_light(ctx, ix, wo, time, spectrum, nee_u, beta, segments + 1, rec, path);
       if (!(bs.pdf > 0)) break;
       const Vec3f wi = Vec3f::load(bs.wi);
       path.scatter(ix, wi, bs, segments);
@@ -297,19 +299,29 @@ class CameraPathIntegrator : public Integrator {
     }
   }
 
+  // The random numbers of one next-event estimation: the light's pick, its sample, and LightMix's group
+  // mixture (drawn only with LightMix: without it, the same stream as before).
+  struct LightNumbers {
+    float pick = 0, light[2] = {0, 0}, mix = 0;
+  };
+  LightNumbers light_numbers(nimbus_rng_t &rng) const {
+    LightNumbers n;
+    n.pick = next_uniform(rng);
+    n.light[0] = next_uniform(rng), n.light[1] = next_uniform(rng);
+    n.mix = selection_.lightmix() ? next_uniform(rng) : 0.0f;
+    return n;
+  }
+
   // Next-event estimation: one light chosen by the light sampler, weighted by the extension.
   // `segments` = length of the path it completes.
   template <class Path>
   void direct_light(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix, const Vec3f &wo,
-                    float time, const PathSpectrum &spectrum, nimbus_rng_t &rng, const Rgb &beta,
+                    float time, const PathSpectrum &spectrum, const LightNumbers &u, const Rgb &beta,
                     uint32_t segments, Record &rec, Path &path) const {
     const nimbus_host_t *h = host().get();
-    const float u_pick = next_uniform(rng);
-    const float u_light[2] = {next_uniform(rng), next_uniform(rng)};
-    // LightMix's group mixture takes one more number (only then: without it, the same stream as before).
-    const float u_mix = selection_.lightmix() ? next_uniform(rng) : 0.0f;
+    const float *u_light = u.light;
     float pmf = 0;
-    const uint32_t light = selection_.pick(&ix, u_pick, u_mix, &pmf);
+    const uint32_t light = selection_.pick(&ix, u.pick, u.mix, &pmf);
     if (light == NIMBUS_NONE || !(pmf > 0)) return;
     // The sample's outcome for the sampler: its contribution before selection and MIS, 0 unless it
     // reaches the vertex unoccluded.
