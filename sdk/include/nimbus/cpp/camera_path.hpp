@@ -152,15 +152,21 @@ class CameraPathIntegrator : public Integrator {
     svc_.camera->resolution(h, &width, &height);
     Record &rec = records_[ctx];
     self().tile_begins(ctx, tile);
-    for (uint32_t y = tile.y0; y < tile.y1; ++y)
+    for (uint32_t y = tile.y0; y < tile.y1; ++y) {
+      // Each pixel's stream is derived a pixel ahead: the hash's chain of multiplies then runs beside
+      // the previous pixel's path instead of delaying its own first ray.
+      nimbus_rng_t next;
+      svc_.rng->derive(h, uint64_t(y) * width + tile.x0, tile.iteration, kStreamCamera, &next);
       for (uint32_t x = tile.x0; x < tile.x1; ++x) {
-        nimbus_rng_t rng;
-        svc_.rng->derive(h, uint64_t(y) * width + x, tile.iteration, kStreamCamera, &rng);
+        nimbus_rng_t rng = next;
+        if (x + 1 < tile.x1)
+          svc_.rng->derive(h, uint64_t(y) * width + x + 1, tile.iteration, kStreamCamera, &next);
         rec.reset();
         self().sample(ctx, x, y, rng, rec);
         elements_.write(svc_.film, svc_.lightmix, h, ctx, x, y, rec);
         self().sample_done(ctx, x, y, rec);
       }
+    }
     return NIMBUS_OK;
   }
 
