@@ -4,6 +4,8 @@
 // does and dot products add in Vec3f's order: code moved from Vec3f to Lanes3 gives the same bits.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -29,7 +31,6 @@ struct Lanes3 {
     return {__builtin_shufflevector(lo, hi, 0, 1, 4, 5)};
   }
   static Lanes3 of(const Vec3f &a) { return {Floats{a.x, a.y, a.z, 0.0f}}; }
-  static Lanes3 splat(float s) { return {Floats{s, s, s, s}}; }
   Vec3f vec3() const { return {v[0], v[1], v[2]}; }
   float x() const { return v[0]; }
   float y() const { return v[1]; }
