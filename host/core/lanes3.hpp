@@ -35,7 +35,6 @@ struct Lanes3 {
   float x() const { return v[0]; }
   float y() const { return v[1]; }
   float z() const { return v[2]; }
-  void store(float *p) const { p[0] = v[0], p[1] = v[1], p[2] = v[2]; }
 };
 
 inline Lanes3 operator+(const Lanes3 &a, const Lanes3 &b) { return {a.v + b.v}; }

@@ -87,13 +87,23 @@ class GeometryScene {
   float shutter_open_ = 0, shutter_close_ = 0;  // Embree's ray time [0, 1] spans it
 };
 
+// A triangle's unit geometric normal by its winding (right-handed). V: Vec3f, or Lanes3 (core/lanes3.hpp),
+// which gives the same bits.
+template <class V>
+V triangle_normal(const V &p0, const V &p1, const V &p2) {
+  return normalize(cross(p1 - p0, p2 - p0));
+}
+// A triangle's geometric normal ng turned, if need be, towards its interpolated vertex normal `shading`.
+template <class V>
+V towards_shading(const V &ng, const V &shading) {
+  return dot(shading, ng) < 0 ? -ng : ng;
+}
 // Geometric normal of a triangle, oriented like the interaction's ng: towards the interpolated shading
-// normal when there are vertex normals (n, three of them, or null), else by the winding (right-handed).
+// normal when there are vertex normals (n, three of them, or null), else by the winding.
 inline Vec3f oriented_triangle_normal(const Vec3f &p0, const Vec3f &p1, const Vec3f &p2, const Vec3f *n,
                                       float b1, float b2) {
-  Vec3f ng = normalize(cross(p1 - p0, p2 - p0));
-  if (n && dot(n[0] * (1 - b1 - b2) + n[1] * b1 + n[2] * b2, ng) < 0) ng = -ng;
-  return ng;
+  const Vec3f ng = triangle_normal(p0, p1, p2);
+  return n ? towards_shading(ng, n[0] * (1 - b1 - b2) + n[1] * b1 + n[2] * b2) : ng;
 }
 // The same for triangle `prim` of a mesh (its rest positions).
 inline Vec3f oriented_triangle_normal(const MeshData &m, uint32_t prim, float b1, float b2) {
@@ -118,16 +128,17 @@ inline Vec3f sphere_point_error(const Vec3f &center, const Vec3f &n, float radiu
 inline Vec3f disk_point_error(const Vec3f &p, const Vec3f &center) {
   return (abs(p) + abs(center)) * rounding_gamma(6);
 }
-// A point interpolated on a triangle with barycentrics b0, b1, b2.
-inline Vec3f triangle_point_error(const Vec3f &p0, const Vec3f &p1, const Vec3f &p2, float b0, float b1,
-                                  float b2) {
+// A point interpolated on a triangle with barycentrics b0, b1, b2 (V: Vec3f or Lanes3).
+template <class V>
+V triangle_point_error(const V &p0, const V &p1, const V &p2, float b0, float b1, float b2) {
   return (abs(p0 * b0) + abs(p1 * b1) + abs(p2 * b2)) * rounding_gamma(7);
 }
 
 // The distance along ng that takes a point off its surface when each coordinate of the point is off by at
 // most the matching component of `error` (pbrt-v4 section 6.8.6): error is per axis, so a floor at z = 0
-// far out along x gets an offset of a few ulps of z, not of x.
-inline float offset_distance(const Vec3f &ng, const Vec3f &error) {
+// far out along x gets an offset of a few ulps of z, not of x. V: Vec3f or Lanes3.
+template <class V>
+float offset_distance(const V &ng, const V &error) {
   return std::max(dot(abs(ng), error), 0x1p-126f);
 }
 

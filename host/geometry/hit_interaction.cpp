@@ -36,8 +36,7 @@ struct Corners {
 };
 
 // The hit at barycentrics (b1, b2) of the triangle with corners c of mesh m: its rest positions, or a
-// deforming mesh's at the ray's time. The arithmetic of triangle_point_error, oriented_triangle_normal
-// and Vec3f, in the same order, four-wide.
+// deforming mesh's at the ray's time, four-wide.
 [[gnu::always_inline]] inline Surface triangle_surface(const MeshData &m, const Corners &c, float b1,
                                                        float b2) {
   const Lanes3 &v0 = c.v[0], &v1 = c.v[1], &v2 = c.v[2];
@@ -46,9 +45,8 @@ struct Corners {
   Surface s;
   const float b0 = 1 - b1 - b2;
   // Barycentric interpolation is far more accurate than o + t d (pbrt-v4 section 6.8).
-  const Lanes3 w0 = v0 * b0, w1 = v1 * b1, w2 = v2 * b2;
-  s.p = w0 + w1 + w2;
-  s.error = (abs(w0) + abs(w1) + abs(w2)) * rounding_gamma(7);
+  s.p = v0 * b0 + v1 * b1 + v2 * b2;
+  s.error = triangle_point_error(v0, v1, v2, b0, b1, b2);
   // Far from the origin a point within an ulp of an edge can round onto the plane of the neighbouring
   // face, where a new ray would meet that face at t = 0 from its far side (a leak at box corners).
   // Nudging the point a few ulps towards the triangle's centroid, within its plane, keeps it strictly
@@ -60,10 +58,10 @@ struct Corners {
     s.error = s.error + abs(s.p) * rounding_gamma(3);
   }
   const Lanes3 e1 = v1 - v0, e2 = v2 - v0;
-  s.ng = normalize(cross(e1, e2));
+  s.ng = triangle_normal(v0, v1, v2);
   if (has_normals) {
     const Lanes3 shading = c.n[0] * b0 + c.n[1] * b1 + c.n[2] * b2;
-    if (dot(shading, s.ng) < 0) s.ng = -s.ng;  // oriented_triangle_normal's orientation
+    s.ng = towards_shading(s.ng, shading);  // as oriented_triangle_normal
     s.ns = dot(shading, shading) > 0 ? normalize(shading) : s.ng;
   } else {
     s.ns = s.ng;
@@ -162,10 +160,8 @@ Surface moved(const Surface &o, const Transform &m, const Transform &inv) {
   static_assert(sizeof(nimbus_interaction_t) == 22 * sizeof(float));
   static_assert(offsetof(nimbus_interaction_t, ng) == 16 && offsetof(nimbus_interaction_t, ns) == 28 &&
                 offsetof(nimbus_interaction_t, dpdu) == 40 && offsetof(nimbus_interaction_t, dpdv) == 52);
-  // offset_distance, four-wide.
-  const float eps = std::max(dot(abs(s.ng), s.error), 0x1p-126f);
   Lanes3::Floats p_eps = s.p.v;
-  p_eps[3] = eps;
+  p_eps[3] = offset_distance(s.ng, s.error);
   auto *bytes = reinterpret_cast<unsigned char *>(&out);
   store4(bytes, p_eps);
   store4(bytes + 16, __builtin_shufflevector(s.ng.v, s.ns.v, 0, 1, 2, 4));

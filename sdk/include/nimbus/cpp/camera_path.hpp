@@ -325,7 +325,6 @@ class CameraPathIntegrator : public Integrator {
                     float time, const PathSpectrum &spectrum, const LightNumbers &u, const Rgb &beta,
                     uint32_t segments, Record &rec, Path &path) const {
     const nimbus_host_t *h = host().get();
-    const float *u_light = u.light;
     float pmf = 0;
     const uint32_t light = selection_.pick(&ix, u.pick, u.mix, &pmf);
     if (light == NIMBUS_NONE || !(pmf > 0)) return;
@@ -342,7 +341,7 @@ class CameraPathIntegrator : public Integrator {
       }
     } report{*this, ctx, light, outcome};
     nimbus_light_incident_t ls;
-    scene_.sample_incident(h, light, ix, u_light, time, ls);
+    scene_.sample_incident(h, light, ix, u.light, time, ls);
     if (!(ls.pdf > 0)) return;
     const Rgb Li = spectrum.light(Rgb::load(ls.L));
     if (is_black(Li)) return;
