@@ -47,32 +47,63 @@ void interaction_at(const nimbus_host_t *host, const nimbus_ray_t *ray, const ni
   world_of(host).geometry->interaction(*ray, *hit, *out, time);
 }
 
+// The ray leaving ix along the unit direction d up to tfar, its origin offset to d's side.
+nimbus_ray_t ray_leaving(const nimbus_interaction_t &ix, const Vec3f &d, float tfar) {
+  nimbus_ray_t r;
+  offset_origin(Vec3f::load(ix.p), Vec3f::load(ix.ng), ix.eps, d).store(r.org);
+  d.store(r.dir);
+  r.tnear = 0;
+  r.tfar = tfar;
+  r.mask = 0xFFFFFFFFu;
+  r.flags = 0;
+  return r;
+}
+
+// The shadow ray from ix to the point target.
+nimbus_ray_t ray_towards(const nimbus_interaction_t &ix, const Vec3f &target) {
+  const Vec3f to = target - Vec3f::load(ix.p);
+  const Vec3f org = offset_origin(Vec3f::load(ix.p), Vec3f::load(ix.ng), ix.eps, to);
+  const Vec3f d = target - org;
+  const float dist = length(d);
+  nimbus_ray_t r;
+  (d / dist).store(r.dir);
+  org.store(r.org);
+  r.tnear = 0;
+  // Light samples already lie off their emitter on this side (area_light.cpp), and point lights lie on no
+  // surface: the ray stops a hair short of the target only so that the target itself is never counted.
+  r.tfar = dist * (1 - 0x1p-20f);
+  r.mask = 0xFFFFFFFFu;
+  r.flags = 0;
+  return r;
+}
+
 void spawn_ray(const nimbus_host_t *, const nimbus_interaction_t *ix, const float dir[3], float tfar,
                nimbus_ray_t *out) {
-  const Vec3f d = Vec3f::load(dir);
-  offset_origin(Vec3f::load(ix->p), Vec3f::load(ix->ng), ix->eps, d).store(out->org);
-  d.store(out->dir);
-  out->tnear = 0;
-  out->tfar = tfar;
-  out->mask = 0xFFFFFFFFu;
-  out->flags = 0;
+  *out = ray_leaving(*ix, Vec3f::load(dir), tfar);
 }
 
 void spawn_ray_to(const nimbus_host_t *, const nimbus_interaction_t *ix, const float p[3],
                   nimbus_ray_t *out) {
-  const Vec3f target = Vec3f::load(p);
-  const Vec3f to = target - Vec3f::load(ix->p);
-  const Vec3f org = offset_origin(Vec3f::load(ix->p), Vec3f::load(ix->ng), ix->eps, to);
-  const Vec3f d = target - org;
-  const float dist = length(d);
-  (d / dist).store(out->dir);
-  org.store(out->org);
-  out->tnear = 0;
-  // Light samples already lie off their emitter on this side (area_light.cpp), and point lights lie on no
-  // surface: the ray stops a hair short of the target only so that the target itself is never counted.
-  out->tfar = dist * (1 - 0x1p-20f);
-  out->mask = 0xFFFFFFFFu;
-  out->flags = 0;
+  *out = ray_towards(*ix, Vec3f::load(p));
+}
+
+void trace_from(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_interaction_t *from,
+                const float dir[3], float time, nimbus_ray_t *ray, nimbus_hit_t *hit,
+                nimbus_interaction_t *ix) {
+  count_rays(run_of(host), tc, 1);
+  const nimbus_ray_t r = ray_leaving(*from, Vec3f::load(dir), kInfinity);
+  const GeometryScene &g = *world_of(host).geometry;
+  g.intersect(r, *hit, time);
+  if (ray) *ray = r;
+  if (ix && hit->geom_id != NIMBUS_NONE) g.interaction(r, *hit, *ix, time);
+}
+
+uint8_t occluded_to(const nimbus_host_t *host, const nimbus_thread_ctx_t *tc, const nimbus_interaction_t *ix,
+                    const float p[3], uint32_t to_infinity, float time) {
+  count_rays(run_of(host), tc, 1);
+  nimbus_ray_t r = ray_towards(*ix, Vec3f::load(p));
+  if (to_infinity) r.tfar = kInfinity;
+  return world_of(host).geometry->occluded(r, time) ? 1 : 0;
 }
 
 float bounding_sphere(const nimbus_host_t *host, float center[3]) {
@@ -174,7 +205,9 @@ const nimbus_host_scene_query_v1_t kSceneQueryV1 = {sizeof(nimbus_host_scene_que
                                                     intersect_at,
                                                     occluded_at,
                                                     interaction_at,
-                                                    moving_bounds};
+                                                    moving_bounds,
+                                                    trace_from,
+                                                    occluded_to};
 
 const nimbus_host_camera_v1_t kCameraV1 = {sizeof(nimbus_host_camera_v1_t),
                                            generate_ray,

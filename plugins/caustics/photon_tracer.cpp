@@ -225,10 +225,8 @@ bool PhotonTracer::link_to_lens(const nimbus_thread_ctx_t &ctx, const nimbus_int
   if (is_black(link.value) || !is_finite(link.value) || !(link.w_cam > 0)) return false;
   link.density = camera_density(link.length, dot(ng, wc), dot(axis, -wc), theta_pix);
   if (!(link.density > 0) || !std::isfinite(link.density)) return false;
-  nimbus_ray_t ray;
-  svc_.scene->spawn_ray_to(h_, &ix, lens, &ray);
   work += ray_work;
-  return !scene_.occluded(h_, ctx, ray, time);
+  return !scene_.occluded_to(h_, ctx, ix, lens, false, time);
 }
 
 // Radiance (area) or intensity (point, spot) that finite light `light` emits from es.org along w.

@@ -100,18 +100,15 @@ class LightTracer final : public sdk::Integrator {
   // Connects point p (with the given outgoing radiance towards the lens per unit W) to the camera.
   bool camera_visible(const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t *ix, const Vec3f &p,
                       const float lens_point[3], float time) const {
+    if (ix) return !timed_.occluded_to(host().get(), ctx, *ix, lens_point, false, time);
+    const Vec3f d = Vec3f::load(lens_point) - p;
+    const float dist = length(d);
     nimbus_ray_t ray;
-    if (ix) {
-      scene_->spawn_ray_to(host().get(), ix, lens_point, &ray);
-    } else {
-      const Vec3f d = Vec3f::load(lens_point) - p;
-      const float dist = length(d);
-      p.store(ray.org);
-      (d / dist).store(ray.dir);
-      ray.tnear = 0;
-      ray.tfar = dist * (1 - 1e-4f);
-      ray.mask = ~0u, ray.flags = 0;
-    }
+    p.store(ray.org);
+    (d / dist).store(ray.dir);
+    ray.tnear = 0;
+    ray.tfar = dist * (1 - 1e-4f);
+    ray.mask = ~0u, ray.flags = 0;
     return !timed_.occluded(host().get(), ctx, ray, time);
   }
 

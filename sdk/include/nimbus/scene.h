@@ -101,6 +101,19 @@ typedef struct nimbus_host_scene_query_v1 {
    * capacity is 0) and returns count (0 when nothing moves or the shutter is instantaneous). Constant
    * between prepare and end_render. */
   uint32_t (*moving_bounds)(const nimbus_host_t *host, nimbus_object_bounds_t *out, uint32_t capacity);
+  /* Since 1.10 (absent from older hosts' tables: check NIMBUS_HAS_MEMBER before calling).
+   * [render-thread] A path's next segment in one call: spawn_ray(from, dir, infinity), intersect_at of
+   * that ray at `time`, and for a hit interaction_at, with the same ray, hit and interaction as those
+   * calls, bit for bit. from, dir borrowed; hit out; ray out unless NULL; ix out unless NULL, written only
+   * for a hit, and may be `from` itself (read before it is written). */
+  void (*trace_from)(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx,
+                     const nimbus_interaction_t *from, const float dir[3], float time, nimbus_ray_t *ray,
+                     nimbus_hit_t *hit, nimbus_interaction_t *ix);
+  /* Since 1.10. [render-thread] spawn_ray_to(ix, p), its tfar made infinite when to_infinity is non-zero
+   * (p a point along the direction to a light at infinity), then occluded_at at `time`, in one call:
+   * 1 if something blocks the segment, as those calls would say. ix, p borrowed. */
+  uint8_t (*occluded_to)(const nimbus_host_t *host, const nimbus_thread_ctx_t *ctx,
+                         const nimbus_interaction_t *ix, const float p[3], uint32_t to_infinity, float time);
 } nimbus_host_scene_query_v1_t;
 
 /* ---- nimbus.host.camera@1 ---------------------------------------------------------------------- */

@@ -14,7 +14,7 @@
  * caller holding a table from an older plugin or host checks NIMBUS_HAS_MEMBER before using them.
  * Changelog: docs/sdk-guide.md. Frozen copies of each minor's headers: tests/abi/sdk-1.N/. */
 #define NIMBUS_ABI_MAJOR 1
-#define NIMBUS_ABI_MINOR 9
+#define NIMBUS_ABI_MINOR 10
 #define NIMBUS_ABI_PATCH 0
 
 typedef struct nimbus_version {

@@ -206,19 +206,20 @@ class CameraPathIntegrator : public Integrator {
     bool specular = true;  // the previous bounce was delta (or there was none): no MIS on hits
     // The albedo element takes the first non-specular surface; no host call when nobody asked for it.
     bool albedo_done = ids().albedo < 0;
-    float prev_pdf = 0;           // solid-angle pdf of the BSDF sample that produced `ray`
-    nimbus_interaction_t prev{};  // the vertex `ray` left
-    // `segments` counts the segments of the path up to the vertex `ray` reaches.
+    float prev_pdf = 0;           // solid-angle pdf of the BSDF sample that made the current segment
+    nimbus_interaction_t prev{};  // the vertex the current segment left
+    // The current segment (along dir) reaches `hit`, and `ix` if it hits; `segments` counts the path's
+    // segments up to it. After the camera ray, trace_from makes each in one host call.
+    nimbus_hit_t hit;
+    nimbus_interaction_t ix;
+    scene_.intersect(h, ctx, ray, time, hit);
+    if (hit.geom_id != NIMBUS_NONE) scene_.interaction(h, ray, hit, time, ix);
+    Vec3f dir = Vec3f::load(ray.dir);
     for (uint32_t segments = 1;; ++segments) {
-      nimbus_hit_t hit;
-      scene_.intersect(h, ctx, ray, time, hit);
-      const Vec3f dir = Vec3f::load(ray.dir);
       if (hit.geom_id == NIMBUS_NONE) {
         add_infinite(rec, beta, spectrum, prev, dir, specular, prev_pdf, segments, time, path);
         break;
       }
-      nimbus_interaction_t ix;
-      scene_.interaction(h, ray, hit, time, ix);
       const Vec3f wo = -dir;
       if (segments == 1) {
         rec.normal = Vec3f::load(ix.ns);
@@ -232,11 +233,13 @@ class CameraPathIntegrator : public Integrator {
         svc_.lights->eval_emitted(h, &ix, wo_arr, le);
         const Rgb Le = spectrum.light(Rgb::load(le));
         if (!is_black(Le)) {
+          float d[3];
+          dir.store(d);
           LightHit lh{ix.light_id,        specular, prev_pdf, 0,        Vec3f::load(ix.p),
                       Vec3f::load(ix.ng), wo,       &prev,    segments, time};
           if (!specular)
-            lh.light_pdf = selection_.pmf(&prev, ix.light_id) *
-                           svc_.lights->pdf_incident(h, ix.light_id, &prev, ray.dir, &ix);
+            lh.light_pdf =
+                selection_.pmf(&prev, ix.light_id) * svc_.lights->pdf_incident(h, ix.light_id, &prev, d, &ix);
           const PathWeight w = path.hit(lh);
           rec.add(beta * Le * w.w, light_group_[ix.light_id], segments, ids(), w.divert, w.alt_ratio);
         }
@@ -279,7 +282,8 @@ class CameraPathIntegrator : public Integrator {
         if (next_uniform(rng) < q) break;
         beta /= 1 - q;
       }
-      svc_.scene->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
+      scene_.trace_from(h, ctx, prev, bs.wi, time, hit, ix);
+      dir = wi;
     }
   }
 
@@ -352,10 +356,7 @@ class CameraPathIntegrator : public Integrator {
     const Vec3f wi = Vec3f::load(ls.wi);
     const Rgb contrib = Rgb::load(f) * std::abs(dot(wi, Vec3f::load(ix.ns)));
     if (is_black(contrib)) return;
-    nimbus_ray_t shadow;
-    svc_.scene->spawn_ray_to(h, &ix, ls.p, &shadow);
-    if (ls.flags & NIMBUS_LIGHT_INFINITE) shadow.tfar = kInfinity;
-    if (scene_.occluded(h, ctx, shadow, time)) return;
+    if (scene_.occluded_to(h, ctx, ix, ls.p, ls.flags & NIMBUS_LIGHT_INFINITE, time)) return;
     outcome =
         std::abs(luminance(beta * contrib * Li)) / ls.pdf;  // a wavelength's beta may have a negative channel
     const bool delta = (ls.flags & (NIMBUS_LIGHT_DELTA_POSITION | NIMBUS_LIGHT_DELTA_DIRECTION)) != 0;

@@ -50,11 +50,13 @@ struct TimedScene {
   const nimbus_host_camera_v1_t *camera = nullptr;
   const nimbus_host_lights_v1_t *lights = nullptr;
   bool timed = false;
+  bool fused = false;  // the host spawns and traces a ray in one call (SDK 1.10)
 
   // [main-thread] The timed view when the host has the 1.7 members and something moves, else timeless.
   static TimedScene of(const nimbus_host_t *h, const nimbus_host_scene_query_v1_t *scene,
                        const nimbus_host_camera_v1_t *camera, const nimbus_host_lights_v1_t *lights) {
-    return {scene, camera, lights, needed(h, scene, camera, lights)};
+    return {scene, camera, lights, needed(h, scene, camera, lights),
+            NIMBUS_HAS_MEMBER(scene, nimbus_host_scene_query_v1_t, occluded_to)};
   }
   // [main-thread] Whether paths need a time: the host has the 1.7 members and something moves.
   static bool needed(const nimbus_host_t *h, const nimbus_host_scene_query_v1_t *scene,
@@ -80,6 +82,25 @@ struct TimedScene {
     else
       scene->occluded(h, &ctx, &ray, &blocked, 1);
     return blocked != 0;
+  }
+  // [render-thread] The closest hit (out) of the ray leaving `from` along the unit direction dir, and
+  // its interaction (out, written only for a hit; a record other than `from`).
+  void trace_from(const nimbus_host_t *h, const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &from,
+                  const float dir[3], float time, nimbus_hit_t &hit, nimbus_interaction_t &ix) const {
+    if (fused) return scene->trace_from(h, &ctx, &from, dir, time, nullptr, &hit, &ix);
+    nimbus_ray_t ray;
+    scene->spawn_ray(h, &from, dir, kInfinity, &ray);
+    intersect(h, ctx, ray, time, hit);
+    if (hit.geom_id != NIMBUS_NONE) interaction(h, ray, hit, time, ix);
+  }
+  // [render-thread] Whether the segment from ix to p is blocked (past p too when to_infinity).
+  bool occluded_to(const nimbus_host_t *h, const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix,
+                   const float p[3], bool to_infinity, float time) const {
+    if (fused) return scene->occluded_to(h, &ctx, &ix, p, to_infinity ? 1 : 0, time) != 0;
+    nimbus_ray_t shadow;
+    scene->spawn_ray_to(h, &ix, p, &shadow);
+    if (to_infinity) shadow.tfar = kInfinity;
+    return occluded(h, ctx, shadow, time);
   }
   void interaction(const nimbus_host_t *h, const nimbus_ray_t &ray, const nimbus_hit_t &hit, float time,
                    nimbus_interaction_t &ix) const {
