@@ -84,7 +84,7 @@ struct TimedScene {
     return blocked != 0;
   }
   // [render-thread] The closest hit (out) of the ray leaving `from` along the unit direction dir, and
-  // its interaction (out, written only for a hit; a record other than `from`).
+  // its interaction (out, written only for a hit; may be `from` itself).
   void trace_from(const nimbus_host_t *h, const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &from,
                   const float dir[3], float time, nimbus_hit_t &hit, nimbus_interaction_t &ix) const {
     if (fused) return scene->trace_from(h, &ctx, &from, dir, time, nullptr, &hit, &ix);
