@@ -153,16 +153,19 @@ class LightTracer final : public sdk::Integrator {
     Rgb beta = Le * (cos_e / (pmf * em.pdf_pos * em.pdf_dir));
     const float beta_emitted = max_component(beta);
     sdk::PathSpectrum spectrum(h, spectral_, bsdf_);  // RGB until a dispersive vertex
-    nimbus_ray_t ray = sdk::emission_ray(org, dir, em.flags);
+    // The segment along `along` reaches `hit`, and `ix` if it hits; after the emission ray, trace_from
+    // makes each segment in one host call.
+    const nimbus_ray_t ray = sdk::emission_ray(org, dir, em.flags);
+    nimbus_hit_t hit;
+    nimbus_interaction_t ix;
+    timed_.intersect(h, ctx, ray, time, hit);
+    if (hit.geom_id != NIMBUS_NONE) timed_.interaction(h, ray, hit, time, ix);
+    Vec3f along = dir;
 
     // Vertex i (1-based) closes a path of i + 1 segments with the camera connection.
     for (uint32_t i = 1; i + 1 <= max_depth_; ++i) {
-      nimbus_hit_t hit;
-      timed_.intersect(h, ctx, ray, time, hit);
       if (hit.geom_id == NIMBUS_NONE) return;
-      nimbus_interaction_t ix;
-      timed_.interaction(h, ray, hit, time, ix);
-      const Vec3f wo = -Vec3f::load(ray.dir);
+      const Vec3f wo = -along;
       float wo_arr[3];
       wo.store(wo_arr);
       const nimbus_lobe_t lobes = bsdf_->lobes(h, &ix);
@@ -200,7 +203,8 @@ class LightTracer final : public sdk::Integrator {
         if (next(rng) < q) return;
         beta /= 1 - q;
       }
-      scene_->spawn_ray(h, &ix, bs.wi, kInfinity, &ray);
+      timed_.trace_from(h, ctx, ix, bs.wi, time, hit, ix);
+      along = wi;
     }
   }
 
