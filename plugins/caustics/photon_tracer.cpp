@@ -162,10 +162,9 @@ float PhotonTracer::trace(const nimbus_thread_ctx_t &ctx, PhotonSamples &samples
 bool PhotonTracer::arrive(const nimbus_thread_ctx_t &ctx, const nimbus_ray_t &ray, float time, PhotonMis &mis,
                           LightSideVertex &v, uint64_t &work, uint64_t ray_work) const {
   nimbus_hit_t hit;
-  scene_.intersect(h_, ctx, ray, time, hit);
+  scene_.trace(h_, ctx, ray, time, hit, v.ix);
   work += ray_work;
   if (hit.geom_id == NIMBUS_NONE) return false;
-  scene_.interaction(h_, ray, hit, time, v.ix);
   v.wo = -Vec3f::load(ray.dir), v.ng = Vec3f::load(v.ix.ng);
   v.c_in = std::abs(dot(v.ng, v.wo));
   if (!(v.c_in > 0)) return false;

@@ -158,8 +158,7 @@ class LightTracer final : public sdk::Integrator {
     const nimbus_ray_t ray = sdk::emission_ray(org, dir, em.flags);
     nimbus_hit_t hit;
     nimbus_interaction_t ix;
-    timed_.intersect(h, ctx, ray, time, hit);
-    if (hit.geom_id != NIMBUS_NONE) timed_.interaction(h, ray, hit, time, ix);
+    timed_.trace(h, ctx, ray, time, hit, ix);
     Vec3f along = dir;
 
     // Vertex i (1-based) closes a path of i + 1 segments with the camera connection.

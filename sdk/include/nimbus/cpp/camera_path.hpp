@@ -212,8 +212,7 @@ class CameraPathIntegrator : public Integrator {
     // segments up to it. After the camera ray, trace_from makes each in one host call.
     nimbus_hit_t hit;
     nimbus_interaction_t ix;
-    scene_.intersect(h, ctx, ray, time, hit);
-    if (hit.geom_id != NIMBUS_NONE) scene_.interaction(h, ray, hit, time, ix);
+    scene_.trace(h, ctx, ray, time, hit, ix);
     Vec3f dir = Vec3f::load(ray.dir);
     for (uint32_t segments = 1;; ++segments) {
       if (hit.geom_id == NIMBUS_NONE) {

@@ -83,15 +83,20 @@ struct TimedScene {
       scene->occluded(h, &ctx, &ray, &blocked, 1);
     return blocked != 0;
   }
-  // [render-thread] The closest hit (out) of the ray leaving `from` along the unit direction dir, and
-  // its interaction (out, written only for a hit; may be `from` itself).
+  // [render-thread] The closest hit (out) of `ray` and, for a hit, its interaction (out).
+  void trace(const nimbus_host_t *h, const nimbus_thread_ctx_t &ctx, const nimbus_ray_t &ray, float time,
+             nimbus_hit_t &hit, nimbus_interaction_t &ix) const {
+    intersect(h, ctx, ray, time, hit);
+    if (hit.geom_id != NIMBUS_NONE) interaction(h, ray, hit, time, ix);
+  }
+  // [render-thread] trace of the ray leaving `from` along the unit direction dir; ix may be `from`
+  // itself.
   void trace_from(const nimbus_host_t *h, const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &from,
                   const float dir[3], float time, nimbus_hit_t &hit, nimbus_interaction_t &ix) const {
     if (fused) return scene->trace_from(h, &ctx, &from, dir, time, nullptr, &hit, &ix);
     nimbus_ray_t ray;
     scene->spawn_ray(h, &from, dir, kInfinity, &ray);
-    intersect(h, ctx, ray, time, hit);
-    if (hit.geom_id != NIMBUS_NONE) interaction(h, ray, hit, time, ix);
+    trace(h, ctx, ray, time, hit, ix);
   }
   // [render-thread] Whether the segment from ix to p is blocked (past p too when to_infinity).
   bool occluded_to(const nimbus_host_t *h, const nimbus_thread_ctx_t &ctx, const nimbus_interaction_t &ix,
